@@ -1,0 +1,25 @@
+#include "host/input_error.hpp"
+
+#include <utility>
+
+namespace intgrid {
+namespace {
+
+std::string describe(const std::filesystem::path& file, std::size_t line, const std::string& field,
+                     const std::string& message) {
+  std::string text = file.string();
+  if (line != 0) text += ":" + std::to_string(line);
+  return text + ": " + field + ": " + message;
+}
+
+}  // namespace
+
+InputError::InputError(std::filesystem::path file, std::size_t line, std::string field,
+                       std::string message)
+    : std::runtime_error(describe(file, line, field, message)),
+      file_(std::move(file)),
+      line_(line),
+      field_(std::move(field)),
+      message_(std::move(message)) {}
+
+}  // namespace intgrid
