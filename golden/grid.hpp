@@ -18,10 +18,13 @@ struct GridGeometry {
   double origin_x = 0.0;    // world position of the lower-left corner of cell (0, 0)
   double origin_y = 0.0;
 
-  std::size_t size() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
+  std::size_t size() const {
+    return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  }
   bool contains(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < width && iy < height; }
   std::size_t index(int ix, int iy) const {
-    return static_cast<std::size_t>(iy) * static_cast<std::size_t>(width) + static_cast<std::size_t>(ix);
+    return static_cast<std::size_t>(iy) * static_cast<std::size_t>(width) +
+           static_cast<std::size_t>(ix);
   }
   // World coordinates of a cell centre.
   double centre_x(int ix) const { return origin_x + (ix + 0.5) * resolution; }

@@ -13,8 +13,12 @@
 
 namespace intgrid {
 
-inline double logit(double p) { return std::log(p) - std::log1p(-p); }
-inline double logistic(double x) { return 1.0 / (1.0 + std::exp(-x)); }
+inline double logit(double p) {
+  return std::log(p) - std::log1p(-p);
+}
+inline double logistic(double x) {
+  return 1.0 / (1.0 + std::exp(-x));
+}
 
 // Saturating index addition: the whole of S_eps fusion.
 template <class Index>

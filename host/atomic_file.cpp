@@ -3,19 +3,66 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
+#include <streambuf>
 #include <string>
 #include <system_error>
 #include <utility>
 
 namespace intgrid {
+
+// A write-only stream buffer on a POSIX file descriptor. Unlike std::filebuf it keeps the errno
+// of the first failed write, so that the error can say why (no space, file too large, I/O).
+class FileStreamBuffer : public std::streambuf {
+ public:
+  explicit FileStreamBuffer(int fd) : fd_(fd) {
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+  }
+
+  // errno of the first failed write, 0 if none failed.
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (!write_buffered()) return traits_type::eof();
+    if (traits_type::eq_int_type(ch, traits_type::eof())) return traits_type::not_eof(ch);
+    *pptr() = traits_type::to_char_type(ch);
+    pbump(1);
+    return ch;
+  }
+
+  int sync() override { return write_buffered() ? 0 : -1; }
+
+ private:
+  bool write_buffered() {
+    const char* data = pbase();
+    std::size_t size = static_cast<std::size_t>(pptr() - pbase());
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    while (size > 0 && error_ == 0) {
+      const ssize_t written = ::write(fd_, data, size);
+      if (written < 0) {
+        if (errno != EINTR) error_ = errno;
+        continue;
+      }
+      data += written;
+      size -= static_cast<std::size_t>(written);
+    }
+    return error_ == 0;
+  }
+
+  int fd_;
+  int error_ = 0;
+  std::array<char, 1 << 16> buffer_{};
+};
+
 namespace {
 
-[[noreturn]] void throw_write_error(const std::filesystem::path& target, const std::string& reason) {
-  throw std::runtime_error("cannot write " + target.string() + ": " + reason);
+[[noreturn]] void throw_write_error(const std::filesystem::path& target, int error) {
+  throw std::runtime_error("cannot write " + target.string() + ": " + std::strerror(error));
 }
 
 // Unique per process and per call, so concurrent writers of one target never share a file.
@@ -26,42 +73,34 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& target) {
   return temporary;
 }
 
-// Without this a crash just after the rename could leave an empty file under the final name on
-// file systems that delay allocation (ext4).
-void sync_to_disk(const std::filesystem::path& file, const std::filesystem::path& target) {
-  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw_write_error(target, std::strerror(errno));
-  const bool synced = ::fsync(fd) == 0;
-  const int sync_error = errno;
-  ::close(fd);
-  if (!synced) throw_write_error(target, std::strerror(sync_error));
-}
-
 }  // namespace
 
 AtomicFile::AtomicFile(std::filesystem::path target)
-    : target_(std::move(target)), temporary_(temporary_path_for(target_)) {
-  errno = 0;
-  out_.open(temporary_, std::ios::binary | std::ios::trunc);
-  if (!out_) throw_write_error(target_, errno != 0 ? std::strerror(errno) : "cannot create file");
+    : target_(std::move(target)), temporary_(temporary_path_for(target_)), out_(nullptr) {
+  fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd_ < 0) throw_write_error(target_, errno);
+  buffer_ = std::make_unique<FileStreamBuffer>(fd_);
+  out_.rdbuf(buffer_.get());
 }
 
 AtomicFile::~AtomicFile() {
+  if (fd_ >= 0) ::close(fd_);
   if (committed_) return;
-  out_.close();
   std::error_code ignored;
   std::filesystem::remove(temporary_, ignored);
 }
 
 void AtomicFile::commit() {
-  errno = 0;
   out_.flush();
-  out_.close();
-  if (!out_) throw_write_error(target_, errno != 0 ? std::strerror(errno) : "write failed");
-  sync_to_disk(temporary_, target_);
+  if (buffer_->error() != 0) throw_write_error(target_, buffer_->error());
+  if (!out_) throw std::runtime_error("cannot write " + target_.string() + ": stream failed");
+  // Without fsync a crash just after the rename could leave an empty file under the final name
+  // on file systems that delay allocation (ext4).
+  if (::fsync(fd_) != 0) throw_write_error(target_, errno);
+  if (::close(std::exchange(fd_, -1)) != 0) throw_write_error(target_, errno);
   std::error_code error;
   std::filesystem::rename(temporary_, target_, error);
-  if (error) throw_write_error(target_, error.message());
+  if (error) throw_write_error(target_, error.value());
   committed_ = true;
 }
 
@@ -70,6 +109,12 @@ void write_file_atomically(const std::filesystem::path& path,
   AtomicFile file(path);
   write(file.stream());
   file.commit();
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  write_file_atomically(path, [content](std::ostream& out) {
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  });
 }
 
 }  // namespace intgrid

@@ -8,8 +8,15 @@ namespace {
 std::string describe(const std::filesystem::path& file, std::size_t line, const std::string& field,
                      const std::string& message) {
   std::string text = file.string();
-  if (line != 0) text += ":" + std::to_string(line);
-  return text + ": " + field + ": " + message;
+  if (line != 0) {
+    text += ':';
+    text += std::to_string(line);
+  }
+  text += ": ";
+  text += field;
+  text += ": ";
+  text += message;
+  return text;
 }
 
 }  // namespace

@@ -1,11 +1,10 @@
 #include "host/log_io.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <optional>
-#include <ostream>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -143,7 +142,7 @@ class RecordFields {
   std::size_t line_number_;
   std::string_view rest_;
   std::string_view keyword_;
-  FieldName last_field_;
+  FieldName last_field_{"record type"};
 };
 
 void require_scans(const fs::path& file, const Log& log, std::string_view scan_record) {
@@ -264,8 +263,9 @@ Log parse_carmen_log(const fs::path& file, std::string_view text, double max_ran
 // reports it on its line instead of skipping the whole file as unknown CARMEN records.
 bool is_carmen_keyword(std::string_view keyword) {
   static constexpr std::string_view kKeywords[] = {
-      "PARAM",     "SYNC",      "FLASER",      "TRUEPOS",     "RAWLASER1",     "RAWLASER2", "RAWLASER3",
-      "RAWLASER4", "ROBOTLASER1", "ROBOTLASER2", "NMEAGGA", "NMEARMC", "POSITIONLASER", "SONAR"};
+      "PARAM",     "SYNC",      "FLASER",        "TRUEPOS",     "RAWLASER1",
+      "RAWLASER2", "RAWLASER3", "RAWLASER4",     "ROBOTLASER1", "ROBOTLASER2",
+      "NMEAGGA",   "NMEARMC",   "POSITIONLASER", "SONAR"};
   return std::ranges::find(kKeywords, keyword) != std::end(kKeywords);
 }
 
@@ -351,7 +351,9 @@ Log read_log(const fs::path& file, SkippedRecords* skipped) {
   return parse_intgrid_log(file, text);
 }
 
-Log read_intgrid_log(const fs::path& file) { return parse_intgrid_log(file, read_input_file(file)); }
+Log read_intgrid_log(const fs::path& file) {
+  return parse_intgrid_log(file, read_input_file(file));
+}
 
 Log read_carmen_log(const fs::path& file, double max_range, SkippedRecords* skipped) {
   return parse_carmen_log(file, read_input_file(file), max_range, skipped);
@@ -359,10 +361,7 @@ Log read_carmen_log(const fs::path& file, double max_range, SkippedRecords* skip
 
 void write_log(const fs::path& file, const Log& log) {
   check_writable(log);
-  const std::string text = format_intgrid_log(log);
-  write_file_atomically(file, [&text](std::ostream& out) {
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  });
+  write_file_atomically(file, format_intgrid_log(log));
 }
 
 }  // namespace intgrid

@@ -57,8 +57,8 @@ std::string read_input_file(const std::filesystem::path& file) {
 }
 
 std::string FieldName::str() const {
-  std::string text(base);
-  if (index) text += std::to_string(*index);
+  std::string text(base_);
+  if (index_) text += std::to_string(*index_);
   return text;
 }
 

@@ -15,11 +15,17 @@ std::string read_input_file(const std::filesystem::path& file);
 
 // A field name for error messages. An index is appended ("r_" and 17 make "r_17") only when an
 // error needs the text, so hot loops over beams build no strings.
-struct FieldName {
-  std::string_view base;
-  std::optional<std::size_t> index;
+class FieldName {
+ public:
+  FieldName(const char* name) : base_(name) {}
+  FieldName(std::string_view name) : base_(name) {}
+  FieldName(std::string_view base, std::size_t index) : base_(base), index_(index) {}
 
   std::string str() const;
+
+ private:
+  std::string_view base_;
+  std::optional<std::size_t> index_;
 };
 
 // Parses token, which must be exactly one number (std::from_chars: no locale; "nan", "-nan" and

@@ -18,12 +18,12 @@ TEST(NarrowIsm, EqualsBruteForceBayesForEverySmallGrid) {
     const int trials = n <= 14 ? 40 : 4;
     for (int trial = 0; trial < trials; ++trial, ++cases) {
       const double cell = 0.01 + 0.2 * unit(rng);
-      const GaussianBeamModel model{cell * (0.2 + 3.0 * unit(rng)), trial % 2 ? 0.0 : 2.0 * unit(rng)};
+      const GaussianBeamModel model{cell * (0.2 + 3.0 * unit(rng)),
+                                    trial % 2 ? 0.0 : 2.0 * unit(rng)};
       const double z = cell * (0.5 + (static_cast<double>(n) + 1.0) * unit(rng));
       const std::vector<double> fast = narrow_ism(model, z, cell, n);
-      const std::vector<double> oracle = brute_force_ism(n, [&](std::size_t g) {
-        return narrow_configuration_likelihood(model, z, cell, g);
-      });
+      const std::vector<double> oracle = brute_force_ism(
+          n, [&](std::size_t g) { return narrow_configuration_likelihood(model, z, cell, g); });
       for (std::size_t i = 0; i < n; ++i)
         ASSERT_NEAR(fast[i], oracle[i], 1e-12)
             << "n=" << n << " cell=" << i + 1 << " z=" << z << " s=" << cell
@@ -61,7 +61,8 @@ TEST(NarrowIsm, MillionCellsMatchLongDoubleReference) {
   constexpr std::size_t kCells = 1'000'000;
   const double cell = 0.05;
   // The reading deep in the grid: 2^-k alone would underflow a double 700 times over.
-  for (const GaussianBeamModel model : {GaussianBeamModel{0.03, 0.0}, GaussianBeamModel{0.02, 1e-4}}) {
+  for (const GaussianBeamModel model :
+       {GaussianBeamModel{0.03, 0.0}, GaussianBeamModel{0.02, 1e-4}}) {
     for (const double z : {12.34, 25'000.021, 49'999.0}) {
       const std::vector<double> fast = narrow_ism(model, z, cell, kCells);
       const std::vector<long double> reference = long_double_ism(model, z, cell, kCells);
@@ -80,7 +81,7 @@ TEST(NarrowIsm, MillionCellsMatchLongDoubleReference) {
 TEST(NarrowIsm, FarCellsTendToOneHalfAndNearCellsToEmpty) {
   const GaussianBeamModel model{0.03, 0.0};
   const std::vector<double> ism = narrow_ism(model, 5.0, 0.05, 400);
-  EXPECT_LT(ism[10], 1e-9);        // 0.55 m: surely empty
+  EXPECT_LT(ism[10], 1e-9);           // 0.55 m: surely empty
   EXPECT_NEAR(ism[399], 0.5, 1e-12);  // 20 m: behind the obstacle, no information
   for (double p : ism) {
     EXPECT_GE(p, 0.0);
@@ -97,12 +98,14 @@ TEST(NarrowIsm, ArgmaxFollowsTheoremOne) {
     const std::size_t n = 200;
     const double z = cell * (1.0 + 150.0 * unit(rng));
     const std::vector<double> ism = narrow_ism(model, z, cell, n);
-    const auto argmax = static_cast<std::size_t>(std::max_element(ism.begin(), ism.end()) - ism.begin()) + 1;
+    const auto argmax =
+        static_cast<std::size_t>(std::max_element(ism.begin(), ism.end()) - ism.begin()) + 1;
     const std::size_t predicted = predicted_argmax_cell(model, z, cell, n);
     ASSERT_EQ(argmax, predicted) << "z=" << z << " s=" << cell;
     // Lemma 2.4.1's Gaussian form (eq. 2.13): the nearer of the two bracketing centres.
     const double m = std::floor(z / cell);
-    const std::size_t lemma = static_cast<std::size_t>(m) + (z - m * cell < (m + 1.0) * cell - z ? 0 : 1);
+    const std::size_t lemma =
+        static_cast<std::size_t>(m) + (z - m * cell < (m + 1.0) * cell - z ? 0 : 1);
     ASSERT_EQ(predicted, lemma);
   }
 }

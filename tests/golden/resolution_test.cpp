@@ -39,7 +39,8 @@ TEST(Resolution, WorstCaseIsBelowEveryOffsetAndBelowTheCentredCase) {
 
 TEST(Resolution, SmallestCellReachesPmaxAndNoSmallerCellDoes) {
   for (const bool worst_case : {false, true}) {
-    for (const double pmax : worst_case ? std::vector{0.55, 0.6, 0.65} : std::vector{0.6, 0.8, 0.95}) {
+    for (const double pmax :
+         worst_case ? std::vector{0.55, 0.6, 0.65} : std::vector{0.6, 0.8, 0.95}) {
       const double sigma = 0.02;
       const double cell = smallest_cell_for_pmax(sigma, pmax, worst_case);
       const auto reached = [&](double s) {

@@ -131,7 +131,8 @@ TEST(Seps, ExtremesAndBadArguments) {
   EXPECT_EQ(codec.quantize_conservative(0.5), 0);
   // Small probabilities keep their precision: p = 1e-20 is -46 in log-odds.
   const SepsCodec fine(16, 0.01);
-  EXPECT_EQ(fine.quantize_conservative(1e-20), static_cast<int>(std::trunc(logit(1e-20) / fine.lambda())));
+  EXPECT_EQ(fine.quantize_conservative(1e-20),
+            static_cast<int>(std::trunc(logit(1e-20) / fine.lambda())));
   EXPECT_THROW(SepsCodec(1, 0.1), std::invalid_argument);
   EXPECT_THROW(SepsCodec(17, 0.1), std::invalid_argument);
   EXPECT_THROW(SepsCodec(8, 0.5), std::invalid_argument);

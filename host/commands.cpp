@@ -1,0 +1,288 @@
+#include "host/commands.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "golden/narrow_ism.hpp"
+#include "golden/resolution.hpp"
+#include "host/atomic_file.hpp"
+#include "host/map_io.hpp"
+#include "host/map_job.hpp"
+
+namespace intgrid {
+namespace {
+
+void print_json(const nlohmann::json& j) {
+  std::printf("%s\n", j.dump(2).c_str());
+}
+
+nlohmann::json stats_json(const InsertionStats& s) {
+  return {{"scans", s.scans},
+          {"readings", s.readings},
+          {"inserted", s.inserted},
+          {"skipped",
+           {{"zero", s.zero},
+            {"not_finite", s.not_finite},
+            {"negative", s.negative},
+            {"at_or_over_max_range", s.at_or_over_max}}},
+          {"cells_updated", s.cells_updated}};
+}
+
+nlohmann::json agreement_json(const MapAgreement& a) {
+  return {{"ours_occupied", a.ours_occupied},
+          {"reference_occupied", a.reference_occupied},
+          {"ours_near_reference", a.ours_near_reference},
+          {"reference_near_ours", a.reference_near_ours}};
+}
+
+// Options shared by `map` and `demo`: the sensor model and the integer set.
+void add_model_options(CLI::App& cmd, MapJobOptions& o) {
+  cmd.add_option("--sigma", o.model.sigma0, "sensor standard deviation at distance 0 (m)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd.add_option("--k-d", o.model.k_d, "relative growth of sigma per metre")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd.add_option("--bits", o.bits, "S_eps index width")
+      ->check(CLI::Range(2, 16))
+      ->capture_default_str();
+  cmd.add_option("--levels", o.levels, "eps such that the ISM's Pmax is this many index steps")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd.add_option("--eps", o.eps, "eps of S_eps (overrides --levels)")->check(CLI::Range(0.0, 0.5));
+  cmd.add_option("--veto-bound", o.veto,
+                 "bound each reading's empty indices by its strongest occupied index")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, VetoBound>{{"claim", VetoBound::strongest_claim},
+                                           {"none", VetoBound::none}},
+          CLI::ignore_case))
+      ->default_str("claim");
+}
+
+struct IsmArgs {
+  GaussianBeamModel model{0.02, 0.0};
+  double cell = 0.05;
+  double z = 1.0;
+  double length = 2.0;
+  std::optional<int> bits;
+  std::optional<double> eps;
+  bool json = false;
+};
+
+void run_ism(const IsmArgs& a) {
+  const auto cells = static_cast<std::size_t>(std::llround(a.length / a.cell));
+  if (cells == 0) throw std::invalid_argument("--length must hold at least one cell");
+  if (cells > 100'000'000) throw std::invalid_argument("--length / --cell exceeds 10^8 cells");
+  if (!std::isfinite(a.z)) throw std::invalid_argument("--z must be finite");
+  std::optional<SepsCodec> codec;
+  if (a.bits || a.eps) codec.emplace(a.bits.value_or(8), a.eps.value_or(0.05));
+  const std::vector<double> ism = narrow_ism(a.model, a.z, a.cell, cells);
+  if (a.json) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (std::size_t k = 1; k <= cells; ++k) {
+      nlohmann::json row = {{"k", k}, {"d", static_cast<double>(k) * a.cell}, {"p", ism[k - 1]}};
+      if (codec) row["index"] = codec->quantize_conservative(ism[k - 1]);
+      rows.push_back(row);
+    }
+    print_json({{"sigma", a.model.sigma0},
+                {"k_d", a.model.k_d},
+                {"cell", a.cell},
+                {"z", a.z},
+                {"argmax_cell", predicted_argmax_cell(a.model, a.z, a.cell, cells)},
+                {"cells", rows}});
+    return;
+  }
+  std::printf(codec ? "k,d,p,index\n" : "k,d,p\n");
+  for (std::size_t k = 1; k <= cells; ++k) {
+    std::printf("%zu,%.6f,%.17g", k, static_cast<double>(k) * a.cell, ism[k - 1]);
+    if (codec) std::printf(",%d", codec->quantize_conservative(ism[k - 1]));
+    std::printf("\n");
+  }
+}
+
+}  // namespace
+
+void add_ism_command(CLI::App& app) {
+  auto args = std::make_shared<IsmArgs>();
+  CLI::App* cmd =
+      app.add_subcommand("ism", "print the exact narrow-FOV ISM (eq. 2.12) as CSV k,d,p");
+  cmd->add_option("--sigma", args->model.sigma0, "sensor standard deviation (m)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--k-d", args->model.k_d, "relative growth of sigma per metre")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--cell", args->cell, "cell size (m)")->required()->check(CLI::PositiveNumber);
+  cmd->add_option("--z", args->z, "the reading (m)")->required();
+  cmd->add_option("--length", args->length, "length of the line of sight (m)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--bits", args->bits, "add the S_eps index column, with this width")
+      ->check(CLI::Range(2, 16));
+  cmd->add_option("--eps", args->eps, "eps of S_eps for the index column (default 0.05)")
+      ->check(CLI::Range(0.0, 0.5));
+  cmd->add_flag("--json", args->json, "print JSON instead of CSV");
+  cmd->callback([args] { run_ism(*args); });
+}
+
+void add_resolution_command(CLI::App& app) {
+  struct Args {
+    double sigma = 0.02, pmax = 0.9;
+    bool json = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand(
+      "resolution",
+      "the smallest cell size whose ISM reaches Pmax (thesis 2.4.2), and its worst case");
+  cmd->add_option("--sigma", a->sigma, "sensor standard deviation (m)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--pmax", a->pmax, "wanted maximum occupancy probability, in (1/2, 1)")
+      ->required();
+  cmd->add_flag("--json", a->json, "print JSON");
+  cmd->callback([a] {
+    const double cell = smallest_cell_for_pmax(a->sigma, a->pmax);
+    const WorstCasePmax worst = narrow_pmax_worst_case(cell, a->sigma);
+    std::optional<double> cell_worst;
+    if (a->pmax <= 2.0 / 3.0) cell_worst = smallest_cell_for_pmax(a->sigma, a->pmax, true);
+    if (a->json) {
+      print_json(
+          {{"sigma", a->sigma},
+           {"pmax", a->pmax},
+           {"cell", cell},
+           {"cell_over_sigma", cell / a->sigma},
+           {"worst_case_pmax", worst.pmax},
+           {"worst_case_offset_cells", worst.offset},
+           {"cell_for_worst_case", cell_worst ? nlohmann::json(*cell_worst) : nlohmann::json()}});
+      return;
+    }
+    std::printf("cell size for Pmax %.6g with z on a cell centre: %.6g m (s/sigma = %.4f)\n",
+                a->pmax, cell, cell / a->sigma);
+    std::printf("worst-case Pmax at that cell size: %.6g (z %.3f cells past a centre)\n",
+                worst.pmax, worst.offset);
+    if (cell_worst)
+      std::printf("cell size for Pmax %.6g wherever z falls: %.6g m\n", a->pmax, *cell_worst);
+    else
+      std::printf(
+          "no cell size reaches Pmax %.6g wherever z falls: the worst case never passes 2/3\n",
+          a->pmax);
+  });
+}
+
+void add_map_command(CLI::App& app) {
+  auto o = std::make_shared<MapJobOptions>();
+  auto json = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand("map", "map a log with its own poses into an occupancy grid");
+  cmd->add_option("--log", o->log, "log file (project format or CARMEN)")->required();
+  cmd->add_option("--out", o->out, "output folder: map.yaml, map.pgm, map.png")->required();
+  cmd->add_option("--res", o->resolution, "cell size (m)")->required()->check(CLI::PositiveNumber);
+  cmd->add_option("--arith", o->arithmetic, "int: S_eps indices; float: double-precision Bayes")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Arithmetic>{
+          {"int", Arithmetic::integer}, {"float", Arithmetic::floating}}))
+      ->default_str("int");
+  add_model_options(*cmd, *o);
+  cmd->add_flag("--json", *json, "print the run's figures as JSON");
+  cmd->callback([o, json] {
+    const MapJobResult r = run_map_job(*o);
+    const nlohmann::json j = {{"out", o->out.string()},
+                              {"arith", o->arithmetic == Arithmetic::integer ? "int" : "float"},
+                              {"seconds", r.seconds},
+                              {"eps", r.codec ? nlohmann::json(r.codec->eps()) : nlohmann::json()},
+                              {"stats", stats_json(r.stats)}};
+    if (*json) return print_json(j);
+    std::printf("wrote %s/map.yaml, map.pgm, map.png\n", o->out.string().c_str());
+    std::printf(
+        "%zu scans, %zu readings inserted, %zu skipped (zero %zu, NaN/inf %zu, negative %zu, "
+        ">= max range %zu), %.3f s\n",
+        r.stats.scans, r.stats.inserted, r.stats.skipped(), r.stats.zero, r.stats.not_finite,
+        r.stats.negative, r.stats.at_or_over_max, r.seconds);
+  });
+}
+
+void add_compare_command(CLI::App& app) {
+  struct Args {
+    std::filesystem::path map, reference;
+    double tolerance_cells = 2.0;
+    bool json = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd =
+      app.add_subcommand("compare", "agreement of a map's occupied cells with a reference map's");
+  cmd->add_option("--map", a->map, "map YAML")->required();
+  cmd->add_option("--reference", a->reference, "reference map YAML")->required();
+  cmd->add_option("--tolerance-cells", a->tolerance_cells,
+                  "distance counted as near, in reference cells")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_flag("--json", a->json, "print JSON");
+  cmd->callback([a] {
+    const RosMap ours = read_ros_map(a->map), reference = read_ros_map(a->reference);
+    const MapAgreement m =
+        compare_occupied(ours.grid, ours.occupied_thresh, reference.grid, reference.occupied_thresh,
+                         a->tolerance_cells * reference.grid.geometry.resolution);
+    if (a->json) return print_json(agreement_json(m));
+    std::printf("occupied cells: %zu ours, %zu reference\n", m.ours_occupied, m.reference_occupied);
+    std::printf("ours within %.3g cells of the reference's: %.1f%%\n", a->tolerance_cells,
+                100.0 * m.ours_near_reference);
+    std::printf("reference's within %.3g cells of ours: %.1f%%\n", a->tolerance_cells,
+                100.0 * m.reference_near_ours);
+  });
+}
+
+nlohmann::json demo_map_section(const MapJobOptions& o, const MapJobResult& r,
+                                const RosMap& reference) {
+  const MapAgreement m = compare_occupied(r.map, 0.65, reference.grid, reference.occupied_thresh,
+                                          2.0 * reference.grid.geometry.resolution);
+  std::printf("  %-5s %s: %zu scans in %.3f s (%.0f scans/s), %zu readings skipped\n",
+              o.arithmetic == Arithmetic::integer ? "int" : "float",
+              (o.out / "map.png").string().c_str(), r.stats.scans, r.seconds,
+              static_cast<double>(r.stats.scans) / r.seconds, r.stats.skipped());
+  std::printf(
+      "        occupied cells within 2 cells of the reference map's: %.1f%%; reference's near "
+      "ours: %.1f%%\n",
+      100.0 * m.ours_near_reference, 100.0 * m.reference_near_ours);
+  return {{"folder", o.out.string()},
+          {"seconds", r.seconds},
+          {"stats", stats_json(r.stats)},
+          {"agreement_with_reference_map", agreement_json(m)}};
+}
+
+void add_demo_command(CLI::App& app) {
+  struct Args {
+    std::filesystem::path out = "intgrid-demo";
+    std::filesystem::path data = INTGRID_DATA_DIR;
+    MapJobOptions map;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("demo", "the full host pipeline on the bundled real log");
+  cmd->add_option("--out", a->out, "output folder")->capture_default_str();
+  cmd->add_option("--data", a->data, "folder of the bundled data")->capture_default_str();
+  add_model_options(*cmd, a->map);
+  cmd->callback([a] {
+    const std::filesystem::path out = std::filesystem::absolute(a->out);
+    std::printf("intgrid demo: writing to %s\n", out.string().c_str());
+    const RosMap reference = read_ros_map(a->data / "malaga_telecom_map.yaml");
+    nlohmann::json summary;
+    std::printf(
+        "mapping the reference run's scans with its poses (%s), 5 cm cells, sigma %.3g m:\n",
+        (a->data / "malaga_telecom_loop_reference.log").string().c_str(), a->map.model.sigma0);
+    for (const Arithmetic arithmetic : {Arithmetic::integer, Arithmetic::floating}) {
+      MapJobOptions o = a->map;
+      o.log = a->data / "malaga_telecom_loop_reference.log";
+      o.resolution = 0.05;
+      o.arithmetic = arithmetic;
+      o.out = out / (arithmetic == Arithmetic::integer ? "map_int" : "map_float");
+      const MapJobResult r = run_map_job(o);
+      summary[arithmetic == Arithmetic::integer ? "map_int" : "map_float"] =
+          demo_map_section(o, r, reference);
+      if (r.codec) summary["map_int"]["eps"] = r.codec->eps();
+    }
+    write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
+    std::printf("wrote %s\n", (out / "summary.json").string().c_str());
+  });
+}
+
+}  // namespace intgrid
