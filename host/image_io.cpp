@@ -73,6 +73,10 @@ PixelPoint world_to_pixel(const GridGeometry& geometry, double x, double y) {
   return {column, geometry.height - 1 - row};
 }
 
+bool is_finite(const PixelPoint& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
 // Liang-Barsky: cuts the segment a-b down to the box [0, x_max] x [0, y_max]; false if no part
 // of it lies inside.
 bool clip_segment(PixelPoint& a, PixelPoint& b, double x_max, double y_max) {
@@ -120,13 +124,12 @@ void draw_line_pixels(RgbImage& image, int x0, int y0, int x1, int y1, Rgb color
 }
 
 void draw_segment(RgbImage& image, PixelPoint a, PixelPoint b, Rgb color) {
-  if (!clip_segment(a, b, image.width - 1, image.height - 1)) return;
+  // Ends near the double range can overflow the clipping arithmetic to NaN.
+  if (!clip_segment(a, b, image.width - 1, image.height - 1) || !is_finite(a) || !is_finite(b)) {
+    return;
+  }
   const auto pixel = [](double v) { return static_cast<int>(std::lround(v)); };
   draw_line_pixels(image, pixel(a.x), pixel(a.y), pixel(b.x), pixel(b.y), color);
-}
-
-bool is_finite(const PixelPoint& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y);
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include <cctype>
 #include <cmath>
 #include <optional>
-#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -110,8 +109,9 @@ fs::path read_image_path(const MapYaml& yaml) {
 
 void read_origin(const MapYaml& yaml, MapDescription& map) {
   const YAML::Node origin = yaml.required("origin");
-  if (!origin.IsSequence() || origin.size() != 3)
+  if (!origin.IsSequence() || origin.size() != 3) {
     yaml.fail(origin, "origin", "must be [x, y, yaw]");
+  }
   map.origin_x = yaml.number(origin[0], "origin");
   map.origin_y = yaml.number(origin[1], "origin");
   if (yaml.number(origin[2], "origin") != 0.0) {
@@ -140,8 +140,9 @@ MapDescription read_map_description(const fs::path& file) {
   read_origin(yaml, map);
 
   const double negate = yaml.number("negate");
-  if (negate != 0.0 && negate != 1.0)
+  if (negate != 0.0 && negate != 1.0) {
     yaml.fail(yaml.required("negate"), "negate", "must be 0 or 1");
+  }
   map.negate = negate == 1.0;
 
   map.occupied_thresh = yaml.number("occupied_thresh");

@@ -17,6 +17,7 @@ std::string read_input_file(const std::filesystem::path& file);
 // error needs the text, so hot loops over beams build no strings.
 class FieldName {
  public:
+  // Implicit, so that a plain field is passed as just "theta".
   FieldName(const char* name) : base_(name) {}
   FieldName(std::string_view name) : base_(name) {}
   FieldName(std::string_view base, std::size_t index) : base_(base), index_(index) {}

@@ -127,6 +127,10 @@ TEST(DrawWorld, PolylineIsClippedToTheImage) {
   EXPECT_EQ(count_pixels(image, kRed), 10);
   for (int x = 0; x < 10; ++x) EXPECT_TRUE(same(image.get(x, 4), kRed)) << x;
 
+  RgbImage across(10, 10);
+  draw_polyline_world(across, kTenByTen, {{-1e308, 5.5, 0.0}, {1e308, 5.5, 0.0}}, kRed);
+  EXPECT_LE(count_pixels(across, kRed), 10) << "overflowing ends draw nothing or the row";
+
   RgbImage untouched(10, 10);
   draw_polyline_world(untouched, kTenByTen,
                       {{-50.0, -50.0, 0.0}, {-40.0, 80.0, 0.0}, {NAN, 1.0, 0.0}, {2.0, 2.0, 0.0}},

@@ -1,0 +1,195 @@
+// Benchmarks of the golden model: the exact narrow ISM, grid fusion (S_eps
+// index addition against Bayesian fusion of doubles) and whole-log scan
+// insertion on the bundled Malaga log. Run: intgrid_bench (see bench/README.md).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <random>
+#include <span>
+#include <vector>
+
+#include "golden/grid.hpp"
+#include "golden/mapping.hpp"
+#include "golden/narrow_ism.hpp"
+#include "golden/resolution.hpp"
+#include "golden/scan_insertion.hpp"
+#include "golden/sensor_model.hpp"
+#include "golden/seps.hpp"
+#include "golden/types.hpp"
+#include "host/log_io.hpp"
+
+namespace {
+
+using namespace intgrid;
+
+// ---------------------------------------------------------------------------
+// 1. The narrow ISM over N line-of-sight cells, reading in the middle of the line.
+
+void BM_NarrowIsm(benchmark::State& state) {
+  const auto cells = static_cast<std::size_t>(state.range(0));
+  const GaussianBeamModel model{0.03, 0.0};
+  constexpr double kCell = 0.05;
+  const double z = static_cast<double>(cells) * kCell * 0.5;
+  std::vector<double> out(cells);
+  for (auto _ : state) {
+    narrow_ism(model, z, kCell, std::span<double>(out));
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_NarrowIsm)->RangeMultiplier(10)->Range(1000, 1000000)->Complexity(benchmark::oN);
+
+// ---------------------------------------------------------------------------
+// 2. Fusing two 4096 x 4096 grids: int8 S_eps indices against double probabilities.
+
+constexpr std::size_t kFuseSide = 4096;
+constexpr std::size_t kFuseCells = kFuseSide * kFuseSide;
+constexpr int kFuseMaxIndex = 127;
+
+// Two grids of random indices in [-127, 127] from a fixed seed, built once.
+struct IndexGrids {
+  std::vector<std::int8_t> a, b;
+};
+const IndexGrids& index_grids() {
+  static const IndexGrids grids = [] {
+    std::mt19937 rng(20261125u);
+    std::uniform_int_distribution<int> index(-kFuseMaxIndex, kFuseMaxIndex);
+    IndexGrids g;
+    g.a.resize(kFuseCells);
+    g.b.resize(kFuseCells);
+    for (std::int8_t& n : g.a) n = static_cast<std::int8_t>(index(rng));
+    for (std::int8_t& n : g.b) n = static_cast<std::int8_t>(index(rng));
+    return g;
+  }();
+  return grids;
+}
+
+// The same grids as the probabilities p_n of SepsCodec(8, 0.05).
+struct ProbabilityGrids {
+  std::vector<double> a, b;
+};
+const ProbabilityGrids& probability_grids() {
+  static const ProbabilityGrids grids = [] {
+    const SepsCodec codec(8, 0.05);
+    const IndexGrids& indices = index_grids();
+    ProbabilityGrids g;
+    g.a.resize(kFuseCells);
+    g.b.resize(kFuseCells);
+    for (std::size_t i = 0; i < kFuseCells; ++i) {
+      g.a[i] = codec.probability(indices.a[i]);
+      g.b[i] = codec.probability(indices.b[i]);
+    }
+    return g;
+  }();
+  return grids;
+}
+
+void BM_FuseGrids_Int8Indices(benchmark::State& state) {
+  const IndexGrids& grids = index_grids();
+  std::vector<std::int8_t> out(kFuseCells);
+  for (auto _ : state) {
+    fuse_indices<std::int8_t>(grids.a, grids.b, out, kFuseMaxIndex);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  const auto cells = static_cast<std::int64_t>(kFuseCells);
+  state.SetItemsProcessed(state.iterations() * cells);
+  // Two grids read, one written.
+  state.SetBytesProcessed(state.iterations() * cells * 3 *
+                          static_cast<std::int64_t>(sizeof(std::int8_t)));
+}
+BENCHMARK(BM_FuseGrids_Int8Indices)->Unit(benchmark::kMillisecond);
+
+void BM_FuseGrids_DoubleBayes(benchmark::State& state) {
+  const ProbabilityGrids& grids = probability_grids();
+  std::vector<double> out(kFuseCells);
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < kFuseCells; ++i)
+      out[i] = fuse_probabilities(grids.a[i], grids.b[i]);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  const auto cells = static_cast<std::int64_t>(kFuseCells);
+  state.SetItemsProcessed(state.iterations() * cells);
+  state.SetBytesProcessed(state.iterations() * cells * 3 *
+                          static_cast<std::int64_t>(sizeof(double)));
+}
+BENCHMARK(BM_FuseGrids_DoubleBayes)->Unit(benchmark::kMillisecond);
+
+// ---------------------------------------------------------------------------
+// 3. Inserting every scan of the bundled reference log into a 5 cm grid.
+
+constexpr double kMapCell = 0.05;
+constexpr double kMapMargin = 1.0;
+const GaussianBeamModel kMapModel{0.05, 0.0};
+
+// The log and the grid covering it, read once.
+struct LogFixture {
+  Log log;
+  GridGeometry geometry;
+};
+const LogFixture& reference_log() {
+  static const LogFixture fixture = [] {
+    LogFixture f;
+    f.log = read_log(INTGRID_DATA_DIR "/malaga_telecom_loop_reference.log");
+    f.geometry = geometry_covering(f.log.scans, kMapCell, kMapMargin);
+    return f;
+  }();
+  return fixture;
+}
+
+void report_insertion(benchmark::State& state, const InsertionStats& stats) {
+  state.SetItemsProcessed(static_cast<std::int64_t>(stats.scans));
+  state.counters["cells_per_scan"] =
+      stats.scans > 0 ? static_cast<double>(stats.cells_updated) / static_cast<double>(stats.scans)
+                      : 0.0;
+}
+
+void BM_ScanInsertion_Int8(benchmark::State& state) {
+  const LogFixture& fixture = reference_log();
+  const std::span<const Scan> scans = fixture.log.scans;
+  const SepsCodec codec = SepsCodec::for_levels(8, narrow_pmax(kMapCell, 0.05), 16);
+  IndexScanInserter<std::int8_t> inserter(kMapModel, kMapCell, codec, VetoBound::strongest_claim);
+  Grid<std::int8_t> grid(fixture.geometry, std::int8_t{0});
+  // Warm-up: the inserter caches one quantized ISM per distinct reading.
+  InsertionStats warm;
+  for (const Scan& scan : scans) inserter.insert(grid, scan, warm);
+
+  InsertionStats stats;
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::fill(grid.cells.begin(), grid.cells.end(), std::int8_t{0});
+    state.ResumeTiming();
+    for (const Scan& scan : scans) inserter.insert(grid, scan, stats);
+    benchmark::DoNotOptimize(grid.cells.data());
+    benchmark::ClobberMemory();
+  }
+  report_insertion(state, stats);
+}
+BENCHMARK(BM_ScanInsertion_Int8)->Unit(benchmark::kMillisecond);
+
+void BM_ScanInsertion_DoubleBayes(benchmark::State& state) {
+  const LogFixture& fixture = reference_log();
+  const std::span<const Scan> scans = fixture.log.scans;
+  ProbabilityGrid grid(fixture.geometry, 0.5);
+
+  InsertionStats stats;
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::fill(grid.cells.begin(), grid.cells.end(), 0.5);
+    state.ResumeTiming();
+    for (const Scan& scan : scans) insert_scan(grid, scan, kMapModel, stats);
+    benchmark::DoNotOptimize(grid.cells.data());
+    benchmark::ClobberMemory();
+  }
+  report_insertion(state, stats);
+}
+BENCHMARK(BM_ScanInsertion_DoubleBayes)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# The main job: set up, build, and run the full host pipeline on the bundled real log.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh default
+./build/default/host/intgrid demo "$@"
