@@ -65,15 +65,17 @@ const std::vector<Index>& IndexScanInserter<Index>::beam_indices(double z) {
     narrow_ism(model_, zq, cell_, ism);
     if (codec_.quantize_conservative(ism.back()) == 0) break;
   }
-  std::size_t last = ism.size();
-  while (last > 1 && codec_.quantize_conservative(ism[last - 1]) == 0) --last;
-  indices.resize(last);
+  // Quantize once, then drop the trailing cells that say nothing (index 0).
+  indices.resize(ism.size());
   int strongest_claim = 0;
-  for (std::size_t k = 0; k < last; ++k) {
+  for (std::size_t k = 0; k < ism.size(); ++k) {
     const int n = codec_.quantize_conservative(ism[k]);
     indices[k] = static_cast<Index>(n);
     strongest_claim = std::max(strongest_claim, n);
   }
+  std::size_t last = indices.size();
+  while (last > 1 && indices[last - 1] == 0) --last;
+  indices.resize(last);
   if (veto_ == VetoBound::strongest_claim)
     for (Index& n : indices) n = static_cast<Index>(std::max<int>(n, -strongest_claim));
   return indices;

@@ -65,7 +65,7 @@ class SepsCodec {
   int quantize_conservative(double p) const;
   // The index nearest p in log-odds. Saturates; NaN gives 0.
   int quantize_nearest(double p) const;
-  int fuse(int a, int b) const { return std::clamp(a + b, -max_index_, max_index_); }
+  int fuse(int a, int b) const { return fuse_indices(a, b, max_index_); }
 
  private:
   int bits_;

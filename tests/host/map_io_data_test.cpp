@@ -45,13 +45,7 @@ TEST_P(BundledMapRoundTrip, WriteThenReadIsIdentical) {
   write_ros_map(dir / "copy.yaml", original);
   const RosMap copy = read_ros_map(dir / "copy.yaml");
 
-  const GridGeometry& a = copy.grid.geometry;
-  const GridGeometry& b = original.grid.geometry;
-  EXPECT_EQ(a.width, b.width);
-  EXPECT_EQ(a.height, b.height);
-  EXPECT_EQ(a.resolution, b.resolution);
-  EXPECT_EQ(a.origin_x, b.origin_x);
-  EXPECT_EQ(a.origin_y, b.origin_y);
+  test::expect_same_geometry(copy.grid.geometry, original.grid.geometry);
   EXPECT_EQ(copy.occupied_thresh, original.occupied_thresh);
   EXPECT_EQ(copy.free_thresh, original.free_thresh);
   EXPECT_TRUE(copy.grid.cells == original.grid.cells);

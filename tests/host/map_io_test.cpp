@@ -14,6 +14,7 @@ namespace intgrid {
 namespace {
 
 using test::expect_input_error;
+using test::expect_same_geometry;
 using test::TempDir;
 using ::testing::HasSubstr;
 
@@ -263,13 +264,7 @@ TEST(RosMap, WriteThenReadKeepsGeometryAndCellsWithinHalfAStep) {
     write_ros_map(dir / "out.yaml", written);
     const RosMap read = read_ros_map(dir / "out.yaml");
 
-    const GridGeometry& a = read.grid.geometry;
-    const GridGeometry& b = written.grid.geometry;
-    EXPECT_EQ(a.width, b.width);
-    EXPECT_EQ(a.height, b.height);
-    EXPECT_EQ(a.resolution, b.resolution);
-    EXPECT_EQ(a.origin_x, b.origin_x);
-    EXPECT_EQ(a.origin_y, b.origin_y);
+    expect_same_geometry(read.grid.geometry, written.grid.geometry);
     EXPECT_EQ(read.occupied_thresh, 0.7);
     EXPECT_EQ(read.free_thresh, 0.2);
     EXPECT_EQ(read.negate, negate);

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "golden/grid.hpp"
 #include "host/input_error.hpp"
 
 namespace intgrid::test {
@@ -77,6 +78,15 @@ std::string expect_input_error(Action&& action, const fs::path& file, std::size_
   }
   ADD_FAILURE() << "expected an InputError for " << file << " line " << line << " field " << field;
   return {};
+}
+
+// A map read back must keep the written geometry bit for bit.
+inline void expect_same_geometry(const GridGeometry& a, const GridGeometry& b) {
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  EXPECT_EQ(a.resolution, b.resolution);
+  EXPECT_EQ(a.origin_x, b.origin_x);
+  EXPECT_EQ(a.origin_y, b.origin_y);
 }
 
 }  // namespace intgrid::test
