@@ -11,10 +11,12 @@
 #include <vector>
 
 #include "golden/grid.hpp"
+#include "golden/ism_kernel.hpp"
 #include "golden/mapping.hpp"
 #include "golden/narrow_ism.hpp"
 #include "golden/resolution.hpp"
 #include "golden/scan_insertion.hpp"
+#include "golden/sectoral_ism.hpp"
 #include "golden/sensor_model.hpp"
 #include "golden/seps.hpp"
 #include "golden/types.hpp"
@@ -42,6 +44,61 @@ void BM_NarrowIsm(benchmark::State& state) {
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_NarrowIsm)->RangeMultiplier(10)->Range(1000, 1000000)->Complexity(benchmark::oN);
+
+// ---------------------------------------------------------------------------
+// 1b. The sectoral ISM over N = R x A polar cells for a fixed number of sectors (Ns = 4):
+// more rings (A = 16), or more bins per ring (R = 64); the reading in the middle. sigma
+// stays 2 cm (k_d = 0): a million cells of 16 bins reach 3 km, where a growing sigma
+// would describe no real cone sensor.
+const ConeSensorModel kBenchCone{0.02, 0.0, 0.5, 0.5};
+
+SectoralGrid sectoral_grid(int rings, int bins) {
+  return SectoralGrid{0.5235987755982988, rings, bins, 4, 0.05};
+}
+
+void run_sectoral_ism(benchmark::State& state, const SectoralGrid& grid) {
+  const double z = 0.5 * grid.rings * grid.cell + 0.013;
+  std::vector<double> out(grid.cells());
+  for (auto _ : state) {
+    sectoral_ism(kBenchCone, grid, z, out);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(grid.cells()));
+  state.SetComplexityN(static_cast<std::int64_t>(grid.cells()));
+}
+void BM_SectoralIsm_Rings(benchmark::State& state) {
+  run_sectoral_ism(state, sectoral_grid(static_cast<int>(state.range(0)) / 16, 16));
+}
+BENCHMARK(BM_SectoralIsm_Rings)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Complexity(benchmark::oN);
+void BM_SectoralIsm_Bins(benchmark::State& state) {
+  run_sectoral_ism(state, sectoral_grid(64, static_cast<int>(state.range(0)) / 64));
+}
+BENCHMARK(BM_SectoralIsm_Bins)
+    ->Arg(64 * 16)
+    ->Arg(64 * 64)
+    ->Arg(64 * 256)
+    ->Arg(64 * 1000)
+    ->Complexity(benchmark::o1);  // the per-ring work depends on Ns only
+
+// The bit-accurate integer kernel model on the same grids as the ring sweep.
+void BM_IsmKernel_Rings(benchmark::State& state) {
+  const SectoralGrid grid = sectoral_grid(static_cast<int>(state.range(0)) / 16, 16);
+  const IsmKernelTables kernel = make_ism_kernel(kBenchCone, grid, SepsCodec(8, 0.05));
+  const std::uint32_t reading = quantize_reading(kernel, 0.5 * grid.rings * grid.cell + 0.013);
+  std::vector<std::int16_t> out(grid.cells());
+  for (auto _ : state) {
+    ism_kernel_indices(kernel, reading, out);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_IsmKernel_Rings)->RangeMultiplier(10)->Range(1000, 1000000)->Complexity(benchmark::oN);
 
 // ---------------------------------------------------------------------------
 // 2. Fusing two 4096 x 4096 grids: int8 S_eps indices against double probabilities.
