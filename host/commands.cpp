@@ -1,24 +1,40 @@
 #include "host/commands.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 
-#include "golden/narrow_ism.hpp"
 #include "golden/resolution.hpp"
 #include "host/atomic_file.hpp"
+#include "host/figures.hpp"
+#include "host/kernel_agreement.hpp"
 #include "host/map_io.hpp"
 #include "host/map_job.hpp"
+#include "host/text_io.hpp"
 
 namespace intgrid {
-namespace {
 
 void print_json(const nlohmann::json& j) {
   std::printf("%s\n", j.dump(2).c_str());
 }
+
+CLI::Option* add_arithmetic_option(CLI::App& cmd, Arithmetic& arithmetic, const std::string& help) {
+  return cmd.add_option("--arith", arithmetic, help)
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Arithmetic>{
+          {"int", Arithmetic::integer}, {"float", Arithmetic::floating}}));
+}
+
+void check_reading_option(double z) {
+  if (!(z >= 0.0) || !std::isfinite(z))
+    throw std::invalid_argument("--z must be a finite distance >= 0 (m), got " + format_number(z));
+}
+
+namespace {
 
 nlohmann::json stats_json(const InsertionStats& s) {
   return {{"scans", s.scans},
@@ -63,70 +79,11 @@ void add_model_options(CLI::App& cmd, MapJobOptions& o) {
       ->default_str("claim");
 }
 
-struct IsmArgs {
-  GaussianBeamModel model{0.02, 0.0};
-  double cell = 0.05;
-  double z = 1.0;
-  double length = 2.0;
-  std::optional<int> bits;
-  std::optional<double> eps;
-  bool json = false;
-};
-
-void run_ism(const IsmArgs& a) {
-  const auto cells = static_cast<std::size_t>(std::llround(a.length / a.cell));
-  if (cells == 0) throw std::invalid_argument("--length must hold at least one cell");
-  if (cells > 100'000'000) throw std::invalid_argument("--length / --cell exceeds 10^8 cells");
-  if (!std::isfinite(a.z)) throw std::invalid_argument("--z must be finite");
-  std::optional<SepsCodec> codec;
-  if (a.bits || a.eps) codec.emplace(a.bits.value_or(8), a.eps.value_or(0.05));
-  const std::vector<double> ism = narrow_ism(a.model, a.z, a.cell, cells);
-  if (a.json) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (std::size_t k = 1; k <= cells; ++k) {
-      nlohmann::json row = {{"k", k}, {"d", static_cast<double>(k) * a.cell}, {"p", ism[k - 1]}};
-      if (codec) row["index"] = codec->quantize_conservative(ism[k - 1]);
-      rows.push_back(row);
-    }
-    print_json({{"sigma", a.model.sigma0},
-                {"k_d", a.model.k_d},
-                {"cell", a.cell},
-                {"z", a.z},
-                {"argmax_cell", predicted_argmax_cell(a.model, a.z, a.cell, cells)},
-                {"cells", rows}});
-    return;
-  }
-  std::printf(codec ? "k,d,p,index\n" : "k,d,p\n");
-  for (std::size_t k = 1; k <= cells; ++k) {
-    std::printf("%zu,%.6f,%.17g", k, static_cast<double>(k) * a.cell, ism[k - 1]);
-    if (codec) std::printf(",%d", codec->quantize_conservative(ism[k - 1]));
-    std::printf("\n");
-  }
+void print_figure_files(const FigureFiles& files) {
+  std::printf("wrote %s and %s\n", files.image.string().c_str(), files.data.string().c_str());
 }
 
 }  // namespace
-
-void add_ism_command(CLI::App& app) {
-  auto args = std::make_shared<IsmArgs>();
-  CLI::App* cmd =
-      app.add_subcommand("ism", "print the exact narrow-FOV ISM (eq. 2.12) as CSV k,d,p");
-  cmd->add_option("--sigma", args->model.sigma0, "sensor standard deviation (m)")
-      ->required()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--k-d", args->model.k_d, "relative growth of sigma per metre")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--cell", args->cell, "cell size (m)")->required()->check(CLI::PositiveNumber);
-  cmd->add_option("--z", args->z, "the reading (m)")->required();
-  cmd->add_option("--length", args->length, "length of the line of sight (m)")
-      ->required()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--bits", args->bits, "add the S_eps index column, with this width")
-      ->check(CLI::Range(2, 16));
-  cmd->add_option("--eps", args->eps, "eps of S_eps for the index column (default 0.05)")
-      ->check(CLI::Range(0.0, 0.5));
-  cmd->add_flag("--json", args->json, "print JSON instead of CSV");
-  cmd->callback([args] { run_ism(*args); });
-}
 
 void add_resolution_command(CLI::App& app) {
   struct Args {
@@ -179,9 +136,7 @@ void add_map_command(CLI::App& app) {
   cmd->add_option("--log", o->log, "log file (project format or CARMEN)")->required();
   cmd->add_option("--out", o->out, "output folder: map.yaml, map.pgm, map.png")->required();
   cmd->add_option("--res", o->resolution, "cell size (m)")->required()->check(CLI::PositiveNumber);
-  cmd->add_option("--arith", o->arithmetic, "int: S_eps indices; float: double-precision Bayes")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Arithmetic>{
-          {"int", Arithmetic::integer}, {"float", Arithmetic::floating}}))
+  add_arithmetic_option(*cmd, o->arithmetic, "int: S_eps indices; float: double-precision Bayes")
       ->default_str("int");
   add_model_options(*cmd, *o);
   cmd->add_flag("--json", *json, "print the run's figures as JSON");
@@ -232,6 +187,38 @@ void add_compare_command(CLI::App& app) {
   });
 }
 
+void add_figure_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand(
+      "figure", "the thesis's figures as one PNG each, with the numbers behind them beside it");
+  cmd->require_subcommand(1);
+
+  struct SweepArgs {
+    std::filesystem::path out = "ns_sweep.png";
+    double z = kNsSweepReading;
+  };
+  auto sweep = std::make_shared<SweepArgs>();
+  CLI::App* ns_sweep = cmd->add_subcommand(
+      "ns-sweep",
+      "figure 2.12: the large-FOV ISM exact (Ns = A) and with Ns = 1, 3, 5, 10 sectors; CSV "
+      "ns,ring,bin,p beside the PNG");
+  ns_sweep->add_option("--out", sweep->out, "PNG file")->capture_default_str();
+  ns_sweep->add_option("--z", sweep->z, "the reading (m)")->capture_default_str();
+  ns_sweep->callback([sweep] {
+    check_reading_option(sweep->z);
+    print_figure_files(write_ns_sweep_figure(sweep->out, sweep->z));
+  });
+
+  auto fusion_out = std::make_shared<std::filesystem::path>("fusion.png");
+  CLI::App* fusion = cmd->add_subcommand(
+      "fusion",
+      "figure 2.13: a narrow and a cone sensor, their ISMs, mono-sensor grids and fusion in "
+      "double and S_eps; JSON summary of the grids beside the PNG");
+  fusion->add_option("--out", *fusion_out, "PNG file")->capture_default_str();
+  fusion->callback([fusion_out] { print_figure_files(write_fusion_figure(*fusion_out)); });
+}
+
+namespace {
+
 nlohmann::json demo_map_section(const MapJobOptions& o, const MapJobResult& r,
                                 const RosMap& reference) {
   const MapAgreement m = compare_occupied(r.map, 0.65, reference.grid, reference.occupied_thresh,
@@ -249,6 +236,35 @@ nlohmann::json demo_map_section(const MapJobOptions& o, const MapJobResult& r,
           {"stats", stats_json(r.stats)},
           {"agreement_with_reference_map", agreement_json(m)}};
 }
+
+nlohmann::json demo_figures_section(const std::filesystem::path& folder) {
+  std::filesystem::create_directories(folder);
+  const FigureFiles sweep = write_ns_sweep_figure(folder / "ns_sweep.png");
+  std::printf("  %s: the large-FOV ISM exact and with Ns = 1, 3, 5, 10 (numbers in %s)\n",
+              sweep.image.string().c_str(), sweep.data.filename().string().c_str());
+  const FigureFiles fusion = write_fusion_figure(folder / "fusion.png");
+  std::printf("  %s: a narrow and a cone sensor fused in double and S_eps (summary in %s)\n",
+              fusion.image.string().c_str(), fusion.data.filename().string().c_str());
+  return {{"ns_sweep", {{"image", sweep.image.string()}, {"data", sweep.data.string()}}},
+          {"fusion", {{"image", fusion.image.string()}, {"data", fusion.data.string()}}}};
+}
+
+nlohmann::json demo_kernel_section() {
+  constexpr std::size_t kDrawnReadings = 2000;
+  constexpr std::uint64_t kSeed = 1;
+  const SectoralGrid grid;
+  const KernelAgreementReport r =
+      kernel_agreement_report(ConeSensorModel{}, grid, SepsCodec(8, 0.05), kDrawnReadings, kSeed);
+  const KernelAgreement& a = r.agreement;
+  std::printf(
+      "  integer ISM kernel, default cone (R %d, A %d, Ns %d), %zu readings: %.3f%% of %zu cells "
+      "equal to the quantized double ISM, %zu one step off, %zu further\n",
+      grid.rings, grid.bins, grid.sectors, a.readings, 100.0 * a.equal_share(), a.cells, a.one_step,
+      a.more);
+  return kernel_agreement_json(r);
+}
+
+}  // namespace
 
 void add_demo_command(CLI::App& app) {
   struct Args {
@@ -280,6 +296,9 @@ void add_demo_command(CLI::App& app) {
           demo_map_section(o, r, reference);
       if (r.codec) summary["map_int"]["eps"] = r.codec->eps();
     }
+    std::printf("the large-FOV ISM (8-bit S_eps, eps 0.05 for the integer parts):\n");
+    summary["figures"] = demo_figures_section(out / "figures");
+    summary["ism_kernel"] = demo_kernel_section();
     write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
     std::printf("wrote %s\n", (out / "summary.json").string().c_str());
   });

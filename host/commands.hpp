@@ -2,6 +2,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "host/map_job.hpp"
 
 namespace intgrid {
 
@@ -9,6 +12,14 @@ void add_ism_command(CLI::App& app);
 void add_resolution_command(CLI::App& app);
 void add_map_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_figure_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
+
+// Shared by the subcommands.
+void print_json(const nlohmann::json& j);
+// --arith int|float; the caller states the default.
+CLI::Option* add_arithmetic_option(CLI::App& cmd, Arithmetic& arithmetic, const std::string& help);
+// Throws std::invalid_argument unless the reading --z is a finite distance >= 0.
+void check_reading_option(double z);
 
 }  // namespace intgrid

@@ -165,16 +165,42 @@ void write_png(const std::filesystem::path& file, const RgbImage& image) {
       file, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
-RgbImage render_probability_grid(const ProbabilityGrid& grid) {
+Rgb probability_color(double p, ProbabilityScale scale) {
+  if (scale == ProbabilityScale::grey) {
+    if (std::isnan(p)) return {190, 215, 240};
+    const std::uint8_t grey = probability_to_pixel(p);
+    return {grey, grey, grey};
+  }
+  if (std::isnan(p)) return {150, 150, 150};
+  const double t = std::clamp((p - 0.5) / kDivergingSaturation, -1.0, 1.0);
+  const Rgb end = t > 0.0 ? Rgb{178, 24, 43} : Rgb{33, 102, 172};
+  const auto towards = [w = std::abs(t)](std::uint8_t channel) {
+    return static_cast<std::uint8_t>(std::lround(255.0 + w * (channel - 255.0)));
+  };
+  return {towards(end.r), towards(end.g), towards(end.b)};
+}
+
+RgbImage render_probability_grid(const ProbabilityGrid& grid, ProbabilityScale scale,
+                                 int pixels_per_cell) {
+  if (pixels_per_cell < 1) throw std::invalid_argument("pixels per cell must be at least 1");
   const GridGeometry& geometry = grid.geometry;
-  RgbImage image(geometry.width, geometry.height);
+  RgbImage image(geometry.width * pixels_per_cell, geometry.height * pixels_per_cell);
   for (int iy = 0; iy < geometry.height; ++iy) {
+    const int top = (geometry.height - 1 - iy) * pixels_per_cell;
     for (int ix = 0; ix < geometry.width; ++ix) {
-      const std::uint8_t grey = probability_to_pixel(grid.at(ix, iy));
-      image.set(ix, geometry.height - 1 - iy, {grey, grey, grey});
+      const Rgb color = probability_color(grid.at(ix, iy), scale);
+      for (int dy = 0; dy < pixels_per_cell; ++dy)
+        for (int dx = 0; dx < pixels_per_cell; ++dx)
+          image.set(ix * pixels_per_cell + dx, top + dy, color);
     }
   }
   return image;
+}
+
+void draw_image(RgbImage& canvas, const RgbImage& picture, int x, int y_from_top) {
+  for (int row = 0; row < picture.height; ++row)
+    for (int column = 0; column < picture.width; ++column)
+      canvas.set(x + column, y_from_top + row, picture.get(column, row));
 }
 
 void draw_polyline_world(RgbImage& image, const GridGeometry& geometry,

@@ -40,8 +40,28 @@ struct RgbImage {
 // buffer does not match the size, std::runtime_error if encoding or writing fails.
 void write_png(const std::filesystem::path& file, const RgbImage& image);
 
-// One pixel per cell, grey = 255 * (1 - P(occupied)), the top image row the top of the map.
-RgbImage render_probability_grid(const ProbabilityGrid& grid);
+// How a probability of occupancy becomes a colour.
+enum class ProbabilityScale {
+  // grey = 255 * (1 - p), as map_server reads it: black occupied, white free.
+  grey,
+  // White at 1/2, toward blue for free and red for occupied, linear in p - 1/2 and saturated
+  // from |p - 1/2| = kDivergingSaturation on: large-FOV ISMs barely leave 1/2.
+  diverging,
+};
+inline constexpr double kDivergingSaturation = 0.1;
+
+// The colour of p on scale; NaN (no cell there, e.g. outside a sensor's FOV) takes the
+// scale's background colour, which no probability has.
+Rgb probability_color(double p, ProbabilityScale scale);
+
+// pixels_per_cell x pixels_per_cell pixels per cell, coloured on scale, the top image row the
+// top of the map. Throws std::invalid_argument unless pixels_per_cell >= 1.
+RgbImage render_probability_grid(const ProbabilityGrid& grid,
+                                 ProbabilityScale scale = ProbabilityScale::grey,
+                                 int pixels_per_cell = 1);
+
+// Copies picture into canvas with its top-left corner at (x, y_from_top), clipped to canvas.
+void draw_image(RgbImage& canvas, const RgbImage& picture, int x, int y_from_top);
 
 // Draws straight lines between consecutive poses (x, y only) in the image of a grid with
 // geometry, clipped to the image; poses with non-finite coordinates break the line.

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   intgrid::add_resolution_command(app);
   intgrid::add_map_command(app);
   intgrid::add_compare_command(app);
+  intgrid::add_figure_command(app);
   intgrid::add_demo_command(app);
   try {
     app.parse(argc, argv);

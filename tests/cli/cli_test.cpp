@@ -5,10 +5,15 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -134,6 +139,158 @@ TEST_F(Cli, NegativeResolutionOrSigmaOnTheCommandLineIsRefused) {
   r = run("ism --sigma -0.02 --cell 0.05 --z 1 --length 2");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--sigma"), std::string::npos) << r.output;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> fields;
+  std::istringstream in(line);
+  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+  return fields;
+}
+
+// A PNG file: the signature, then the IHDR chunk with a positive width and height.
+void expect_png(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ASSERT_GE(bytes.size(), 24u) << file;
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << file;
+  EXPECT_EQ(bytes.substr(12, 4), "IHDR") << file;
+  const auto big_endian = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    for (std::size_t i = 0; i < 4; ++i)
+      value = value << 8 | static_cast<std::uint8_t>(bytes[at + i]);
+    return value;
+  };
+  EXPECT_GT(big_endian(16), 0u) << file;
+  EXPECT_GT(big_endian(20), 0u) << file;
+}
+
+TEST_F(Cli, LargeFovIsmPrintsOneRowPerPolarCellOneBased) {
+  const CliRun r = run("ism --fov 30 --bins 16 --rings 40 --sectors 4 --cell 0.05 --z 1.0");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::vector<std::string> lines = lines_of(r.output);
+  ASSERT_EQ(lines.size(), 1u + 40 * 16);
+  EXPECT_EQ(lines[0], "ring,bin,p");
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> f = fields_of(lines[i]);
+    ASSERT_EQ(f.size(), 3u) << lines[i];
+    EXPECT_EQ(std::stoi(f[0]), static_cast<int>((i - 1) / 16 + 1)) << lines[i];
+    EXPECT_EQ(std::stoi(f[1]), static_cast<int>((i - 1) % 16 + 1)) << lines[i];
+    const double p = std::stod(f[2]);
+    EXPECT_TRUE(p >= 0.0 && p <= 1.0) << lines[i];
+  }
+}
+
+TEST_F(Cli, IntegerArithmeticAddsTheKernelsIndexColumn) {
+  const CliRun r = run("ism --fov 30 --z 0.8 --arith int --bits 6 --eps 0.1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::vector<std::string> lines = lines_of(r.output);
+  ASSERT_EQ(lines.size(), 1u + 40 * 16);
+  EXPECT_EQ(lines[0], "ring,bin,p,index");
+  int free = 0;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> f = fields_of(lines[i]);
+    ASSERT_EQ(f.size(), 4u) << lines[i];
+    std::size_t used = 0;
+    const int index = std::stoi(f[3], &used);
+    EXPECT_EQ(used, f[3].size()) << lines[i];
+    EXPECT_TRUE(index >= -31 && index <= 31) << lines[i];  // 6 bits
+    free += index < 0 ? 1 : 0;
+  }
+  EXPECT_GT(free, 0);
+}
+
+TEST_F(Cli, LargeFovIsmWritesAPng) {
+  const fs::path png = dir_ / "ism.png";
+  const CliRun r = run("ism --fov 45 --bins 12 --sectors 3 --z 1.2 --png " + png.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  expect_png(png);
+}
+
+TEST_F(Cli, KernelAgreementHasNoCellFurtherThanOneStep) {
+  CliRun r = run("ism --fov 30 --agreement 300 --seed 7");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("readings: 342 (300 drawn with seed 7, 42 at the edges)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("further off: 0\n"), std::string::npos) << r.output;
+  r = run("ism --fov 20 --bins 24 --sectors 8 --rings 30 --agreement 100 --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("\"further\": 0,"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"readings\": 132,"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, FiguresWriteTheirPngsAndNumbers) {
+  CliRun r = run("figure ns-sweep --z 0.9 --out " + (dir_ / "sweep.png").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  expect_png(dir_ / "sweep.png");
+  std::ifstream csv(dir_ / "sweep.csv");
+  const std::string csv_text{std::istreambuf_iterator<char>(csv), std::istreambuf_iterator<char>()};
+  const std::vector<std::string> lines = lines_of(csv_text);
+  ASSERT_EQ(lines.size(), 1u + 5 * 40 * 30);
+  EXPECT_EQ(lines[0], "ns,ring,bin,p");
+  EXPECT_EQ(lines[1].rfind("30,1,1,", 0), 0u) << lines[1];
+  EXPECT_EQ(lines.back().rfind("10,40,30,", 0), 0u) << lines.back();
+
+  r = run("figure fusion --out " + (dir_ / "fusion.png").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  expect_png(dir_ / "fusion.png");
+  std::ifstream json(dir_ / "fusion.json");
+  const std::string summary{std::istreambuf_iterator<char>(json), std::istreambuf_iterator<char>()};
+  for (const char* key : {"\"fused_double\"", "\"fused_seps\"", "\"informed\"", "\"max_p\""})
+    EXPECT_NE(summary.find(key), std::string::npos) << key;
+}
+
+TEST_F(Cli, FigureRefusesAFileThatIsNoPng) {
+  expect_error(run("figure fusion --out " + (dir_ / "fusion.jpg").string()), ".png");
+  EXPECT_FALSE(fs::exists(dir_ / "fusion.jpg"));
+  expect_error(run("figure ns-sweep --z -1 --out " + (dir_ / "s.png").string()), "--z");
+  EXPECT_FALSE(fs::exists(dir_ / "s.png"));
+}
+
+TEST_F(Cli, InvalidLargeFovConfigurationsAreNamedAndWriteNoPng) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--bins 16 --sectors 5", "multiple of sectors"},
+      {"--bins 16 --sectors 32", "exceed bins"},
+      {"--bins 128 --sectors 128", "exceed 64"},
+      {"--bins 64 --sectors 32 --arith int", "kernel"},
+      {"--rings 0", "rings"},
+      {"--rings -3", "rings"},
+      {"--bins 0", "bins"},
+      {"--sectors 0", "sectors"},
+      {"--cell 0", "cell"},
+      {"--cell -0.05", "cell"},
+      {"--sigma0 0", "sigma"},
+      {"--k-theta -1", "k_theta"},
+  };
+  const fs::path png = dir_ / "bad.png";
+  for (const auto& [options, keyword] : cases) {
+    SCOPED_TRACE(options);
+    expect_error(run("ism --fov 30 --z 1 " + options + " --png " + png.string()), keyword);
+    EXPECT_FALSE(fs::exists(png));
+  }
+  for (const char* fov : {"0", "180", "-10", "200"}) {
+    SCOPED_TRACE(fov);
+    expect_error(run(std::string("ism --z 1 --fov ") + fov + " --png " + png.string()), "FOV");
+    EXPECT_FALSE(fs::exists(png));
+  }
+  for (const char* z : {"nan", "-0.5", "inf"}) {
+    for (const char* arith : {"float", "int"}) {
+      SCOPED_TRACE(std::string(z) + " " + arith);
+      expect_error(run(std::string("ism --fov 30 --arith ") + arith + " --z " + z + " --png " +
+                       png.string()),
+                   "--z");
+      EXPECT_FALSE(fs::exists(png));
+    }
+  }
+  expect_error(run("ism --fov 30 --agreement 10 --bins 64 --sectors 32"), "kernel");
 }
 
 TEST_F(Cli, LogWithoutAnyValidReadingIsAnError) {
