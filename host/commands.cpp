@@ -12,6 +12,7 @@
 #include "golden/resolution.hpp"
 #include "host/atomic_file.hpp"
 #include "host/figures.hpp"
+#include "host/hardware_summary.hpp"
 #include "host/kernel_agreement.hpp"
 #include "host/map_io.hpp"
 #include "host/map_job.hpp"
@@ -264,6 +265,14 @@ nlohmann::json demo_kernel_section() {
   return kernel_agreement_json(r);
 }
 
+// The kernels' measured figures from docs/hardware_report.json, or one line saying how to
+// generate it: the demo never fails for want of the report.
+nlohmann::json demo_hardware_section(const std::filesystem::path& data) {
+  const HardwareSummary h = read_hardware_summary(hardware_report_path(data));
+  for (const std::string& line : h.lines) std::printf("%s\n", line.c_str());
+  return h.json;
+}
+
 }  // namespace
 
 void add_demo_command(CLI::App& app) {
@@ -299,6 +308,7 @@ void add_demo_command(CLI::App& app) {
     std::printf("the large-FOV ISM (8-bit S_eps, eps 0.05 for the integer parts):\n");
     summary["figures"] = demo_figures_section(out / "figures");
     summary["ism_kernel"] = demo_kernel_section();
+    summary["hardware"] = demo_hardware_section(a->data);
     write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
     std::printf("wrote %s\n", (out / "summary.json").string().c_str());
   });

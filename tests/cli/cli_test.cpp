@@ -299,4 +299,50 @@ TEST_F(Cli, LogWithoutAnyValidReadingIsAnError) {
                "no scan holds a valid reading");
 }
 
+// The demo prints the hardware kernels' summary from <data>/../docs/hardware_report.json and
+// puts it in summary.json under "hardware"; without the report it prints how to make one.
+class CliDemo : public Cli {
+ protected:
+  // A copy of the bundled data (links) in dir_/data, so that dir_/docs can hold a report.
+  fs::path data() {
+    const fs::path d = dir_ / "data";
+    fs::create_directories(d);
+    for (const char* f :
+         {"malaga_telecom_map.yaml", "malaga_telecom_map.pgm", "malaga_telecom_loop_reference.log"})
+      fs::create_symlink(fs::path(INTGRID_DATA_DIR) / f, d / f);
+    return d;
+  }
+  std::string summary_json() {
+    std::ifstream in(dir_ / "out" / "summary.json");
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+};
+
+TEST_F(CliDemo, PrintsTheKernelsSummaryFromTheHardwareReport) {
+  const fs::path d = data();
+  fs::create_directories(dir_ / "docs");
+  std::ofstream(dir_ / "docs" / "hardware_report.json") << R"({"date": "2026-11-25", "summary": [
+    {"kernel": "index_fusion", "configuration": "B=8 LANES=1", "cycles_per_cell": 1.0,
+     "cycles_per_cell_backpressure": 2.0, "latency_cycles": 1, "latency_cycles_backpressure": 3,
+     "lut4": 44, "dff": 20, "bram": 0, "fmax_mhz": 164.0, "target_mhz": 80, "target_met": true}]})";
+  const CliRun r = run("demo --data " + d.string() + " --out " + (dir_ / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("  index_fusion B=8 LANES=1: 1.000 cycles/cell, latency 1 cycles "
+                          "(with back-pressure: 2.000, 3); 44 LUT4 / 20 DFF / 0 BRAM; Fmax "
+                          "164.0 MHz vs 80 MHz target: met\n"),
+            std::string::npos)
+      << r.output;
+  const std::string summary = summary_json();
+  EXPECT_NE(summary.find("\"hardware\""), std::string::npos);
+  EXPECT_NE(summary.find("\"fmax_mhz\": 164.0"), std::string::npos) << summary;
+}
+
+TEST_F(CliDemo, WithoutTheHardwareReportSaysHowToMakeIt) {
+  const CliRun r = run("demo --data " + data().string() + " --out " + (dir_ / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("hardware kernels: no report yet"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("bash scripts/hw_reports.sh"), std::string::npos) << r.output;
+  EXPECT_NE(summary_json().find("\"hardware\""), std::string::npos);
+}
+
 }  // namespace

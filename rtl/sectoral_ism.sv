@@ -1,0 +1,164 @@
+// Kernel 2 of HARDWARE.md: the sectoral inverse sensor model in integer arithmetic. One
+// reading z per input beat (READING_FRAC fractional bits, in cells); per reading, the S_eps
+// index of every polar cell, one cell per output beat, ring-major (cell (r, a) at
+// (r - 1) * BINS + a), y_last on the reading's last cell. Bit for bit golden's
+// ism_kernel_indices; z_last_i is accepted and ignored (every reading is a whole frame).
+//
+// A set-up engine (sectoral_ism_setup) computes the (ring, sector) indices of a reading into
+// one bank of a two-bank index RAM while the streamer (sectoral_ism_stream) sends the other
+// bank's cells, so set-up and output overlap. The configuration comes from parameters and
+// ROM files written by testbench/ism_kernel_export (sectoral_ism_<config>.vc / .svh / .ys).
+//
+// Timing: a reading is taken when the engine is idle and its next bank is free. Set-up takes
+// 2 cycles for a reading with no ring in the window (z >= reach), else
+//   ND + 15 + (n + 1) * CONDITIONS * CLASSES + 2 n + n * (3 SECTORS + 1)
+// cycles, n the rings within WINDOW cells of z and ND = ceil(MUL_B_W / MUL_DIGIT_W). The first
+// cell leaves 3 cycles after the set-up's last cycle (if the other bank is not streaming);
+// then one cell per cycle while y_ready_i is high.
+module sectoral_ism #(
+  parameter int unsigned READING_W              = 16,
+  parameter int unsigned RINGS                  = 40,
+  parameter int unsigned BINS                   = 16,
+  parameter int unsigned SECTORS                = 4,
+  parameter int unsigned CLASSES                = 6,
+  parameter int unsigned CONDITIONS             = 9,
+  parameter int unsigned WINDOW                 = 13,
+  parameter int unsigned MAX_INDEX              = 127,
+  parameter int unsigned IDX_W                  = 8,
+  parameter int unsigned READING_FRAC           = 8,
+  parameter int unsigned LOG_FRAC               = 8,
+  parameter int unsigned QUAD_SHIFT             = 24,
+  parameter int unsigned LOG_W                  = 20,
+  parameter int unsigned E_W                    = 12,
+  parameter int unsigned SQ_W                   = 24,
+  parameter int unsigned COEF_W                 = 19,
+  parameter int unsigned MUL_B_W                = 19,
+  parameter int unsigned MUL_DIGIT_W            = 3,
+  parameter int unsigned NORM_W                 = 12,
+  parameter int unsigned WEIGHT_W               = 13,
+  parameter int unsigned PHI_N                  = 2440,
+  parameter int unsigned PHI_W                  = 8,
+  parameter int unsigned PHI_AW                 = 12,
+  parameter int unsigned THR_W                  = 14,
+  parameter int unsigned BUCKET_SHIFT           = 6,
+  parameter int unsigned BUCKET_N               = 148,
+  parameter int unsigned BUCKET_W               = 7,
+  parameter              QUAD_COEF_FILE         = "sectoral_ism_cone16_quad_coef.mem",
+  parameter              LOG_NORM_FILE          = "sectoral_ism_cone16_log_norm.mem",
+  parameter              LOG_WEIGHT_FILE        = "sectoral_ism_cone16_log_weight.mem",
+  parameter              LOG_ADD_FILE           = "sectoral_ism_cone16_log_add.mem",
+  parameter              THRESHOLDS_FILE        = "sectoral_ism_cone16_thresholds.mem",
+  parameter              THRESHOLD_BUCKET_FILE  = "sectoral_ism_cone16_threshold_bucket.mem"
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+  input  logic                 z_valid_i,
+  output logic                 z_ready_o,
+  input  logic [READING_W-1:0] z_data_i,
+  input  logic                 z_last_i,
+  output logic                 y_valid_o,
+  input  logic                 y_ready_i,
+  output logic [IDX_W-1:0]     y_data_o,
+  output logic                 y_last_o
+);
+  localparam int unsigned RING_W = $clog2(RINGS + 2);
+  localparam int unsigned RIDX_W = (RINGS > 1) ? $clog2(RINGS) : 1;
+  localparam int unsigned J_W    = (SECTORS > 1) ? $clog2(SECTORS) : 1;
+  localparam int unsigned IDX_AW = RIDX_W + J_W;
+
+  logic unused_z_last;
+  assign unused_z_last = z_last_i;
+
+  // Two banks: the engine fills bank wb_q, the streamer empties bank rb_q.
+  logic [1:0]        full_q;
+  logic              wb_q, rb_q;
+  logic [RING_W-1:0] lo_q [0:1];
+  logic [RING_W-1:0] hi_q [0:1];
+  logic [IDX_W-1:0]  below_q [0:1];
+
+  logic              setup_idle, setup_done, stream_release;
+  logic [RING_W-1:0] setup_lo, setup_hi;
+  logic [IDX_W-1:0]  setup_below;
+  logic              z_fire;
+  assign z_ready_o = setup_idle && !full_q[wb_q];  // the engine is idle and its next bank is free
+  assign z_fire    = z_valid_i && z_ready_o;       // a reading is accepted
+
+  logic              idx_we, idx_re;
+  logic [IDX_AW-1:0] idx_waddr, idx_raddr;
+  logic [IDX_W-1:0]  idx_wdata, idx_rdata;
+
+  sectoral_ism_setup #(
+    .READING_W(READING_W), .RINGS(RINGS), .BINS(BINS), .SECTORS(SECTORS), .CLASSES(CLASSES),
+    .CONDITIONS(CONDITIONS), .WINDOW(WINDOW), .MAX_INDEX(MAX_INDEX), .IDX_W(IDX_W),
+    .READING_FRAC(READING_FRAC), .LOG_FRAC(LOG_FRAC), .QUAD_SHIFT(QUAD_SHIFT), .LOG_W(LOG_W),
+    .E_W(E_W), .SQ_W(SQ_W), .COEF_W(COEF_W), .MUL_B_W(MUL_B_W), .MUL_DIGIT_W(MUL_DIGIT_W),
+    .NORM_W(NORM_W), .WEIGHT_W(WEIGHT_W), .PHI_N(PHI_N), .PHI_W(PHI_W), .PHI_AW(PHI_AW),
+    .THR_W(THR_W), .BUCKET_SHIFT(BUCKET_SHIFT), .BUCKET_N(BUCKET_N), .BUCKET_W(BUCKET_W),
+    .QUAD_COEF_FILE(QUAD_COEF_FILE), .LOG_NORM_FILE(LOG_NORM_FILE),
+    .LOG_WEIGHT_FILE(LOG_WEIGHT_FILE), .LOG_ADD_FILE(LOG_ADD_FILE),
+    .THRESHOLDS_FILE(THRESHOLDS_FILE), .BUCKET_FILE(THRESHOLD_BUCKET_FILE)
+  ) i_setup (
+    .clk_i, .rst_ni,
+    .start_i     (z_fire),
+    .z_i         (z_data_i),
+    .idle_o      (setup_idle),
+    .done_o      (setup_done),
+    .r_lo_o      (setup_lo),
+    .r_hi_o      (setup_hi),
+    .below_o     (setup_below),
+    .idx_we_o    (idx_we),
+    .idx_waddr_o (idx_waddr),
+    .idx_wdata_o (idx_wdata)
+  );
+
+  sectoral_ism_ram #(.WIDTH(IDX_W), .DEPTH(2 << IDX_AW)) i_index_ram (
+    .clk_i,
+    .we_i    (idx_we),
+    .waddr_i ({wb_q, idx_waddr}),
+    .wdata_i (idx_wdata),
+    .re_i    (idx_re),
+    .raddr_i ({rb_q, idx_raddr}),
+    .rdata_o (idx_rdata)
+  );
+
+  sectoral_ism_stream #(.RINGS(RINGS), .BINS(BINS), .SECTORS(SECTORS), .IDX_W(IDX_W)) i_stream (
+    .clk_i, .rst_ni,
+    .full_i    (full_q[rb_q]),
+    .r_lo_i    (lo_q[rb_q]),
+    .r_hi_i    (hi_q[rb_q]),
+    .below_i   (below_q[rb_q]),
+    .release_o (stream_release),
+    .re_o      (idx_re),
+    .raddr_o   (idx_raddr),
+    .rdata_i   (idx_rdata),
+    .y_valid_o,
+    .y_ready_i,
+    .y_data_o,
+    .y_last_o
+  );
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      full_q <= '0;
+      wb_q   <= 1'b0;
+      rb_q   <= 1'b0;
+    end else begin
+      if (setup_done) begin      // bank wb_q is written
+        full_q[wb_q] <= 1'b1;
+        wb_q         <= !wb_q;
+      end
+      if (stream_release) begin  // bank rb_q is read (never the bank just written)
+        full_q[rb_q] <= 1'b0;
+        rb_q         <= !rb_q;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (setup_done) begin
+      lo_q[wb_q]    <= setup_lo;
+      hi_q[wb_q]    <= setup_hi;
+      below_q[wb_q] <= setup_below;
+    end
+  end
+endmodule

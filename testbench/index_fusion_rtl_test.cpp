@@ -1,0 +1,357 @@
+// Verilator testbench of rtl/index_fusion.sv, one Verilated model per (B, LANES) configuration
+// (the list is in testbench/index_fusion.cmake), every output beat checked against golden
+// intgrid::fuse_indices by the scoreboard of testbench/index_fusion_tb.hpp.
+//
+//   index_fusion_rtl_test [gtest flags]   the tests (ctest label hw)
+//   index_fusion_rtl_test --report        one JSON line per configuration: cycles per beat and
+//                                         per cell, latency, with back-pressure off and on, and
+//                                         simulation speed (cells per second of host time)
+//   --trace[=DIR] or INTGRID_TB_TRACE=DIR  VCD waveforms, one file per test in DIR (default .),
+//                                         the first INTGRID_TB_TRACE_CYCLES cycles (default 20000)
+//   INTGRID_TB_SEED=N                      reproduce a run (every test prints its seed)
+#include <verilated.h>
+#include <verilated_vcd_c.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "index_fusion_configs.hpp"  // generated: the Verilated models, INTGRID_INDEX_FUSION_CONFIGS
+#include "testbench/index_fusion_tb.hpp"
+
+namespace {
+
+using namespace intgrid::tb;
+
+struct TraceOptions {
+  bool on = false;
+  std::string dir = ".";
+  std::uint64_t cycles = 20000;
+} g_trace;
+
+struct SimOptions {
+  Coverage coverage = Coverage::kRandom;
+  std::uint64_t random_beats = 0;
+  bool random_traffic = true;  // random valid gaps and back-pressure, in segments
+  TrafficRates rates{};        // when !random_traffic
+  std::uint64_t seed = 0;
+};
+
+struct SimRun {
+  FusionResult result;
+  double host_seconds = 0.0;
+};
+
+// One Verilated model with its clock, reset and optional VCD trace.
+template <class VModel, int B, int LANES>
+class Harness {
+ public:
+  explicit Harness(const std::string& name) : top_(nullptr) {
+    context_.traceEverOn(g_trace.on);
+    top_ = std::make_unique<VModel>(&context_, "top");
+    if (g_trace.on) {
+      vcd_ = std::make_unique<VerilatedVcdC>();
+      top_->trace(vcd_.get(), 99);
+      const std::string path = g_trace.dir + "/" + name + ".vcd";
+      vcd_->open(path.c_str());
+      std::printf("[trace] %s\n", path.c_str());
+    }
+    top_->clk_i = 0;
+    top_->eval();
+  }
+  ~Harness() {
+    if (vcd_) vcd_->close();
+    top_->final();
+  }
+
+  // Synchronous reset for `cycles` cycles, inputs idle.
+  void reset(int cycles) {
+    top_->rst_ni = 0;
+    top_->a_valid_i = 0;
+    top_->b_valid_i = 0;
+    top_->y_ready_i = 0;
+    for (int i = 0; i < cycles; ++i) {
+      top_->eval();
+      dump();
+      tick();
+    }
+    top_->rst_ni = 1;
+  }
+
+  // Applies the inputs and returns the outputs they settle to (before the next rising edge).
+  FusionOutputs apply(const FusionDrive<B, LANES>& d) {
+    top_->a_valid_i = d.a_valid;
+    top_->b_valid_i = d.b_valid;
+    top_->y_ready_i = d.y_ready;
+    top_->a_last_i = d.a_last;
+    top_->b_last_i = d.b_last;
+    to_port(top_->a_data_i, d.a_data);
+    to_port(top_->b_data_i, d.b_data);
+    top_->eval();
+    dump();
+    FusionOutputs out;
+    out.a_ready = top_->a_ready_o;
+    out.b_ready = top_->b_ready_o;
+    out.y_valid = top_->y_valid_o;
+    out.y_last = top_->y_last_o;
+    out.y_data = from_port(top_->y_data_o);
+    return out;
+  }
+
+  // One rising and one falling edge.
+  void tick() {
+    context_.timeInc(5);
+    top_->clk_i = 1;
+    top_->eval();
+    dump();
+    context_.timeInc(5);
+    top_->clk_i = 0;
+    top_->eval();
+  }
+
+ private:
+  void dump() {
+    if (vcd_ && context_.time() < 10 * g_trace.cycles) vcd_->dump(context_.time());
+  }
+  VerilatedContext context_;
+  std::unique_ptr<VModel> top_;
+  std::unique_ptr<VerilatedVcdC> vcd_;
+};
+
+// Runs a stimulus through a model already out of reset; returns the scoreboard's verdict.
+template <class VModel, int B, int LANES>
+SimRun stream(Harness<VModel, B, LANES>& dut, const std::string& name, const SimOptions& opt) {
+  const TrafficShaper traffic = opt.random_traffic ? TrafficShaper(splitmix64(opt.seed + 1))
+                                                   : TrafficShaper::fixed(opt.rates);
+  FusionDriver<B, LANES> driver(FusionStimulus<B, LANES>(opt.coverage, opt.random_beats, opt.seed),
+                                traffic, splitmix64(opt.seed + 2));
+  FusionScoreboard<B, LANES> board(name);
+
+  const auto start = std::chrono::steady_clock::now();
+  std::uint64_t idle = 0, tail = 0;
+  while (true) {
+    const FusionDrive<B, LANES>& d = driver.drive();
+    const FusionOutputs out = dut.apply(d);
+    const bool progress = out.y_valid && d.y_ready;
+    const bool moved = board.observe(d, out);
+    dut.tick();
+    driver.advance(moved);
+
+    idle = (moved || progress) ? 0 : idle + 1;
+    if (idle > 20000) {
+      board.stuck("no handshake for 20000 cycles");
+      break;
+    }
+    if (board.protocol_errors() > 100) break;
+    // After the last beat: 32 idle cycles in which nothing may come out.
+    if (driver.finished() && board.in_flight() == 0 && ++tail > 32) break;
+  }
+  const auto stop = std::chrono::steady_clock::now();
+  return SimRun{board.result(), std::chrono::duration<double>(stop - start).count()};
+}
+
+// A fresh model: reset, then the whole stimulus.
+template <class VModel, int B, int LANES>
+SimRun simulate(const std::string& name, const SimOptions& opt) {
+  Harness<VModel, B, LANES> dut(name);
+  dut.reset(3);
+  return stream(dut, name, opt);
+}
+
+// Coverage of the issue: exhaustive where 2^(2B) <= 2^20 pairs, else at least 2^18 random beats
+// (every lane gets its own random pair in each beat).
+template <int B>
+SimOptions default_options(const std::string& name) {
+  SimOptions opt;
+  opt.coverage = 2 * B <= 20 ? Coverage::kExhaustive : Coverage::kRandom;
+  opt.random_beats = std::uint64_t{1} << 18;
+  opt.seed = test_seed(name);
+  return opt;
+}
+
+template <class VModel, int B, int LANES>
+void check_config(const std::string& name) {
+  const SimOptions opt = default_options<B>(name);
+  const SimRun run = simulate<VModel, B, LANES>(name, opt);
+  const FusionResult& r = run.result;
+  std::printf("[%s] %s (%s), %.2f s\n", name.c_str(), r.summary().c_str(),
+              opt.coverage == Coverage::kExhaustive ? "exhaustive per lane" : "random",
+              run.host_seconds);
+  EXPECT_TRUE(r.ok()) << r.summary();
+  const std::uint64_t beats =
+      opt.coverage == Coverage::kExhaustive ? FusionStimulus<B, LANES>::kPairs : opt.random_beats;
+  EXPECT_EQ(r.beats_in, beats);
+  EXPECT_EQ(r.beats_out, beats);
+  EXPECT_EQ(r.cells_checked, beats * LANES);
+}
+
+#define INTGRID_DEFINE_CONFIG_TEST(Model, Bits, Lanes)                        \
+  TEST(IndexFusionRtl, B##Bits##_Lanes##Lanes) {                              \
+    check_config<Model, Bits, Lanes>("index_fusion_rtl_b" #Bits "_l" #Lanes); \
+  }
+INTGRID_INDEX_FUSION_CONFIGS(INTGRID_DEFINE_CONFIG_TEST)
+#undef INTGRID_DEFINE_CONFIG_TEST
+
+// Full rate (no gaps, no back-pressure): exactly one beat per cycle after a latency of one.
+TEST(IndexFusionRtl, FullRateIsOneBeatPerCycle) {
+  SimOptions opt;
+  opt.random_beats = 4096;
+  opt.random_traffic = false;
+  opt.rates = TrafficRates{1.0, 1.0};
+  opt.seed = test_seed("index_fusion_rtl_full_rate");
+  const FusionResult r =
+      simulate<Vindex_fusion_b8_l8, 8, 8>("index_fusion_rtl_full_rate", opt).result;
+  ASSERT_TRUE(r.ok()) << r.summary();
+  EXPECT_EQ(r.cycles, opt.random_beats + 1);  // beat k accepted at edge k, output at edge k + 1
+  EXPECT_EQ(r.last_out_cycle - r.first_out_cycle, opt.random_beats - 1);
+  EXPECT_EQ(r.latency.min, 1);
+  EXPECT_EQ(r.latency.max, 1);
+}
+
+// Back-pressure only (inputs always valid, y_ready 30% of cycles): after the first beat, every
+// cycle in which y_ready is high moves a beat out.
+TEST(IndexFusionRtl, BackPressureWastesNoReadyCycle) {
+  SimOptions opt;
+  opt.random_beats = 8192;
+  opt.random_traffic = false;
+  opt.rates = TrafficRates{1.0, 0.3};
+  opt.seed = test_seed("index_fusion_rtl_back_pressure");
+  const FusionResult r =
+      simulate<Vindex_fusion_b8_l8, 8, 8>("index_fusion_rtl_back_pressure", opt).result;
+  ASSERT_TRUE(r.ok()) << r.summary();
+  EXPECT_EQ(r.ready_cycles, r.beats_out);
+}
+
+// A reset in the middle of a stall empties the buffer: with two beats held (y_ready low, inputs
+// refused), one reset cycle drops them, y_valid falls and the input is accepted again; a full
+// stimulus then runs cleanly through the same model.
+TEST(IndexFusionRtl, ResetEmptiesAStalledBuffer) {
+  const std::string name = "index_fusion_rtl_reset";
+  Harness<Vindex_fusion_b8_l8, 8, 8> dut(name);
+  dut.reset(3);
+  FusionDrive<8, 8> d;
+  d.a_valid = d.b_valid = true;
+  d.y_ready = false;
+  d.a_data.w[0] = 0x01020304u;
+  d.b_data.w[0] = 0x10203040u;
+  EXPECT_TRUE(dut.apply(d).a_ready);  // empty: taken into entry a
+  dut.tick();
+  EXPECT_TRUE(dut.apply(d).a_ready);  // a stalls: taken into entry b
+  dut.tick();
+  FusionOutputs full = dut.apply(d);
+  EXPECT_FALSE(full.a_ready);  // both entries held
+  EXPECT_TRUE(full.y_valid);
+  EXPECT_EQ(full.y_data.w[0], 0x11223344u);
+  dut.reset(1);
+  d.a_valid = d.b_valid = false;
+  const FusionOutputs after = dut.apply(d);
+  EXPECT_FALSE(after.y_valid);
+  d.a_valid = d.b_valid = true;
+  EXPECT_TRUE(dut.apply(d).a_ready);
+  SimOptions opt;
+  opt.random_beats = 20000;
+  opt.seed = test_seed(name);
+  const FusionResult r = stream(dut, name, opt).result;
+  EXPECT_TRUE(r.ok()) << r.summary();
+  EXPECT_EQ(r.beats_out, opt.random_beats);
+}
+
+// The checker's self-test: the RTL built with INTGRID_FAULT_SATURATION lets a sum of exactly
+// -2^(B-1) through unsaturated. Over the exhaustive run every lane meets each of the 129 pairs
+// with a + b = -128 once, so the scoreboard must report exactly 129 * LANES mismatching cells,
+// and nothing else.
+TEST(IndexFusionRtlFault, CheckerCatchesWrongNegativeBound) {
+  constexpr int kB = 8, kLanes = 8;
+  const std::string name = "index_fusion_rtl_fault_b8_l8";
+  const SimOptions opt = default_options<kB>(name);
+  const FusionResult r = simulate<Vindex_fusion_fault_b8_l8, kB, kLanes>(name, opt).result;
+  std::printf("[%s] %s\n", name.c_str(), r.summary().c_str());
+  int pairs_at_min = 0;
+  for (int a = -128; a <= 127; ++a)
+    for (int b = -128; b <= 127; ++b) pairs_at_min += (a + b == -128);
+  ASSERT_EQ(pairs_at_min, 129);
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.cell_mismatches, std::uint64_t{129} * kLanes);
+  EXPECT_EQ(r.protocol_errors, 0u);
+  EXPECT_EQ(r.last_mismatches, 0u);
+  EXPECT_EQ(r.beats_out, (FusionStimulus<kB, kLanes>::kPairs));
+}
+
+// --report: one JSON line per configuration.
+template <class VModel, int B, int LANES>
+void report(const char* model) {
+  const std::string base =
+      "index_fusion_report_b" + std::to_string(B) + "_l" + std::to_string(LANES);
+  SimOptions opt;
+  opt.random_beats = std::uint64_t{1} << 17;
+  opt.random_traffic = false;
+  opt.seed = splitmix64(master_seed() ^ (B * 100 + LANES));
+  opt.rates = TrafficRates{1.0, 1.0};
+  const SimRun off = simulate<VModel, B, LANES>(base + "_bp_off", opt);
+  opt.rates = TrafficRates{1.0, 0.5};
+  const SimRun on = simulate<VModel, B, LANES>(base + "_bp_on", opt);
+  auto part = [](const SimRun& run, double ready) {
+    const FusionResult& r = run.result;
+    const double beats = static_cast<double>(r.beats_out);
+    char buf[512];
+    std::snprintf(
+        buf, sizeof buf,
+        "{\"y_ready_rate\":%.2f,\"ok\":%s,\"cycles\":%llu,\"cycles_per_beat\":%.5f,"
+        "\"cycles_per_cell\":%.5f,\"steady_ii\":%.5f,\"ready_cycles_per_beat\":%.5f,"
+        "\"latency_cycles\":%s,\"sim_cells_per_s\":%.4g,\"sim_cycles_per_s\":%.4g}",
+        ready, r.ok() ? "true" : "false", static_cast<unsigned long long>(r.cycles),
+        static_cast<double>(r.cycles) / beats, static_cast<double>(r.cycles) / (beats * LANES),
+        static_cast<double>(r.last_out_cycle - r.first_out_cycle) / (beats - 1.0),
+        static_cast<double>(r.ready_cycles) / beats, r.latency.json().c_str(),
+        beats * LANES / run.host_seconds, static_cast<double>(r.cycles) / run.host_seconds);
+    return std::string(buf);
+  };
+  std::printf(
+      "{\"kernel\":\"index_fusion\",\"model\":\"%s\",\"simulator\":\"verilator %s\",\"B\":%d,"
+      "\"LANES\":%d,\"beats\":%llu,\"cells\":%llu,\"bp_off\":%s,\"bp_on\":%s}\n",
+      model, Verilated::productVersion(), B, LANES,
+      static_cast<unsigned long long>(opt.random_beats),
+      static_cast<unsigned long long>(opt.random_beats * LANES), part(off, 1.0).c_str(),
+      part(on, 0.5).c_str());
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool want_report = false;
+  if (const char* env = std::getenv("INTGRID_TB_TRACE"); env != nullptr && *env != '\0') {
+    g_trace.on = true;
+    if (std::strcmp(env, "1") != 0) g_trace.dir = env;
+  }
+  if (const char* env = std::getenv("INTGRID_TB_TRACE_CYCLES"); env != nullptr)
+    g_trace.cycles = std::strtoull(env, nullptr, 0);
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--report") {
+      want_report = true;
+    } else if (arg == "--trace") {
+      g_trace.on = true;
+    } else if (arg.rfind("--trace=", 0) == 0) {
+      g_trace.on = true;
+      g_trace.dir = arg.substr(8);
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  if (want_report) {
+#define INTGRID_REPORT_CONFIG(Model, B, LANES) report<Model, B, LANES>("rtl");
+    INTGRID_INDEX_FUSION_CONFIGS(INTGRID_REPORT_CONFIG)
+#undef INTGRID_REPORT_CONFIG
+    return 0;
+  }
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
