@@ -2,5 +2,5 @@
 # The main job: set up, build, and run the full host pipeline on the bundled real log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh default
+bash scripts/build.sh default intgrid  # the demo needs only the command
 ./build/default/host/intgrid demo "$@"
