@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <random>
@@ -20,6 +21,7 @@
 #include "golden/sensor_model.hpp"
 #include "golden/seps.hpp"
 #include "golden/types.hpp"
+#include "golden/ugamma.hpp"
 #include "host/log_io.hpp"
 
 namespace {
@@ -246,6 +248,134 @@ void BM_ScanInsertion_DoubleBayes(benchmark::State& state) {
   report_insertion(state, stats);
 }
 BENCHMARK(BM_ScanInsertion_DoubleBayes)->Unit(benchmark::kMillisecond);
+
+// ---------------------------------------------------------------------------
+// 4. U_gamma (ALGORITHMS.md 5, default 16 bits, 16 steps per halving): sums and fusions of
+// 4096 probabilities as integer exponents, against the same work in double.
+
+constexpr std::size_t kUGammaTerms = 4096;
+
+// 4096 random indices in [0, 160]: probabilities from 1 down to 2^-10 (fixed seed).
+std::vector<UIndex> ugamma_terms(const UGamma& u, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<UIndex> index(0, 10 * u.steps_per_halving());
+  std::vector<UIndex> terms(kUGammaTerms);
+  for (UIndex& t : terms) t = index(rng);
+  return terms;
+}
+
+// A chain of 4095 Zech additions (table lookups), as a normalization would sum.
+void BM_UGamma_Add(benchmark::State& state) {
+  const UGamma u;
+  const std::vector<UIndex> terms = ugamma_terms(u, 41);
+  for (auto _ : state) {
+    UIndex total = u.zero();
+    for (UIndex t : terms) total = u.add(total, t);
+    benchmark::DoNotOptimize(total);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kUGammaTerms));
+}
+BENCHMARK(BM_UGamma_Add);
+
+// The same sum pairwise (ceil(log2 n) roundings on any path instead of n - 1), in a scratch copy.
+void BM_UGamma_AddPairwise(benchmark::State& state) {
+  const UGamma u;
+  const std::vector<UIndex> terms = ugamma_terms(u, 41);
+  std::vector<UIndex> scratch(terms.size());
+  for (auto _ : state) {
+    std::copy(terms.begin(), terms.end(), scratch.begin());
+    for (std::size_t n = scratch.size(); n > 1; n = (n + 1) / 2) {
+      for (std::size_t k = 0; k < n / 2; ++k)
+        scratch[k] = u.add(scratch[2 * k], scratch[2 * k + 1]);
+      if (n % 2 == 1) scratch[n / 2] = scratch[n - 1];
+    }
+    benchmark::DoNotOptimize(scratch.front());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kUGammaTerms));
+}
+BENCHMARK(BM_UGamma_AddPairwise);
+
+// Reference: the same sum in double as a user would write it over natural logs (log-sum-exp,
+// one exp and one log1p per term) ...
+void BM_Double_AddLogs(benchmark::State& state) {
+  const UGamma u;
+  std::vector<double> logs;
+  for (UIndex t : ugamma_terms(u, 41)) logs.push_back(u.to_log(t));
+  for (auto _ : state) {
+    double total = logs.front();
+    for (std::size_t k = 1; k < logs.size(); ++k) {
+      const double hi = std::max(total, logs[k]), lo = std::min(total, logs[k]);
+      total = hi + std::log1p(std::exp(lo - hi));
+    }
+    benchmark::DoNotOptimize(total);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kUGammaTerms));
+}
+BENCHMARK(BM_Double_AddLogs);
+
+// ... or over the probabilities themselves (a plain sum, one dependent add per term).
+void BM_Double_AddProbabilities(benchmark::State& state) {
+  const UGamma u;
+  std::vector<double> probabilities;
+  for (UIndex t : ugamma_terms(u, 41)) probabilities.push_back(u.to_probability(t));
+  for (auto _ : state) {
+    double total = 0.0;
+    for (double p : probabilities) total += p;
+    benchmark::DoNotOptimize(total);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kUGammaTerms));
+}
+BENCHMARK(BM_Double_AddProbabilities);
+
+// 4096 independent Bayesian fusions of two probabilities in (0.01, 0.99): two Phi_minus and
+// one Phi_plus lookups each.
+struct FusionPairs {
+  std::vector<double> p, q;
+  std::vector<UIndex> i, j;
+};
+
+FusionPairs fusion_pairs(const UGamma& u) {
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> unit(0.01, 0.99);
+  FusionPairs pairs;
+  for (std::size_t k = 0; k < kUGammaTerms; ++k) {
+    pairs.i.push_back(u.from_probability(unit(rng)));
+    pairs.j.push_back(u.from_probability(unit(rng)));
+    pairs.p.push_back(u.to_probability(pairs.i.back()));
+    pairs.q.push_back(u.to_probability(pairs.j.back()));
+  }
+  return pairs;
+}
+
+void BM_UGamma_Fuse(benchmark::State& state) {
+  const UGamma u;
+  const FusionPairs pairs = fusion_pairs(u);
+  std::vector<UIndex> out(kUGammaTerms);
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < kUGammaTerms; ++k) out[k] = u.fuse(pairs.i[k], pairs.j[k]);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kUGammaTerms));
+}
+BENCHMARK(BM_UGamma_Fuse);
+
+// Reference: p q / (p q + (1 - p)(1 - q)) in double on the same probabilities.
+void BM_Double_Fuse(benchmark::State& state) {
+  const UGamma u;
+  const FusionPairs pairs = fusion_pairs(u);
+  std::vector<double> out(kUGammaTerms);
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < kUGammaTerms; ++k) {
+      const double p = pairs.p[k], q = pairs.q[k];
+      out[k] = p * q / (p * q + (1.0 - p) * (1.0 - q));
+    }
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kUGammaTerms));
+}
+BENCHMARK(BM_Double_Fuse);
 
 }  // namespace
 

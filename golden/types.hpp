@@ -6,6 +6,9 @@
 
 namespace intgrid {
 
+// The two arithmetics of every algorithm: integer indices (S_eps, U_gamma) or double precision.
+enum class Arithmetic { integer, floating };
+
 // A planar pose: position in metres, heading in radians (counter-clockwise from +x).
 struct Pose2 {
   double x = 0.0;

@@ -16,6 +16,8 @@
 #include "host/kernel_agreement.hpp"
 #include "host/map_io.hpp"
 #include "host/map_job.hpp"
+#include "host/slam_job.hpp"
+#include "host/slam_sweeps.hpp"
 #include "host/text_io.hpp"
 
 namespace intgrid {
@@ -216,6 +218,8 @@ void add_figure_command(CLI::App& app) {
       "double and S_eps; JSON summary of the grids beside the PNG");
   fusion->add_option("--out", *fusion_out, "PNG file")->capture_default_str();
   fusion->callback([fusion_out] { print_figure_files(write_fusion_figure(*fusion_out)); });
+
+  add_slam_sweeps_figure(*cmd);
 }
 
 namespace {
@@ -275,6 +279,34 @@ nlohmann::json demo_hardware_section(const std::filesystem::path& data) {
 
 }  // namespace
 
+// The SLAM on the real log in both arithmetics, scored against the reference trajectory.
+static nlohmann::json demo_slam_section(const std::filesystem::path& data,
+                                        const std::filesystem::path& out) {
+  std::printf("event-driven grid SLAM of the raw log (%s), 10 cm cells, default settings:\n",
+              (data / "malaga_telecom_loop.log").string().c_str());
+  nlohmann::json section;
+  double seconds[2] = {0.0, 0.0};
+  for (const Arithmetic arithmetic : {Arithmetic::integer, Arithmetic::floating}) {
+    const bool integer = arithmetic == Arithmetic::integer;
+    SlamJobOptions o;
+    o.log = data / "malaga_telecom_loop.log";
+    o.reference = data / "malaga_telecom_loop_reference.log";
+    o.out = out / (integer ? "int" : "float");
+    o.arithmetic = arithmetic;
+    const SlamJobResult r = run_slam_job(o);
+    seconds[integer ? 0 : 1] = r.seconds;
+    std::printf(
+        "  %-6s ATE %.3f m (raw odometry %.2f m), E(sigma) %.1f mm, %.2f s for %.1f s of data "
+        "(%.1fx real time) -> %s\n",
+        integer ? "int" : "float", r.ate->rmse, r.odometry_ate->rmse, r.run.mean_sigma() * 1e3,
+        r.seconds, r.log_seconds, r.log_seconds / r.seconds, (o.out / "map.png").string().c_str());
+    section[integer ? "int" : "float"] = r.metrics;
+  }
+  section["int_over_float_time"] = seconds[0] / seconds[1];
+  std::printf("  integer / double run time: %.2f\n", seconds[0] / seconds[1]);
+  return section;
+}
+
 void add_demo_command(CLI::App& app) {
   struct Args {
     std::filesystem::path out = "intgrid-demo";
@@ -305,6 +337,7 @@ void add_demo_command(CLI::App& app) {
           demo_map_section(o, r, reference);
       if (r.codec) summary["map_int"]["eps"] = r.codec->eps();
     }
+    summary["slam"] = demo_slam_section(a->data, out / "slam");
     std::printf("the large-FOV ISM (8-bit S_eps, eps 0.05 for the integer parts):\n");
     summary["figures"] = demo_figures_section(out / "figures");
     summary["ism_kernel"] = demo_kernel_section();

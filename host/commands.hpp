@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "golden/slam.hpp"
 #include "host/map_job.hpp"
 
 namespace intgrid {
@@ -14,6 +15,10 @@ void add_map_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_figure_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
+void add_slam_command(CLI::App& app);
+// The SLAM settings as options (--res, --lambda, --xi, ...), shared by slam and the figures.
+void add_slam_options(CLI::App& cmd, SlamConfig& config);
 
 // Shared by the subcommands.
 void print_json(const nlohmann::json& j);

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   intgrid::add_compare_command(app);
   intgrid::add_figure_command(app);
   intgrid::add_demo_command(app);
+  intgrid::add_simulate_command(app);
+  intgrid::add_slam_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

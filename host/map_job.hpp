@@ -10,8 +10,6 @@
 
 namespace intgrid {
 
-enum class Arithmetic { integer, floating };
-
 struct MapJobOptions {
   std::filesystem::path log;
   std::filesystem::path out;

@@ -6,6 +6,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev
   libsystemc-dev verilator yosys nextpnr-ice40
+  gnuplot-nox
+  gnuplot-nox
 )
 missing=()
 for p in "${packages[@]}"; do

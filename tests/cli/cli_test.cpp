@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -307,8 +308,8 @@ class CliDemo : public Cli {
   fs::path data() {
     const fs::path d = dir_ / "data";
     fs::create_directories(d);
-    for (const char* f :
-         {"malaga_telecom_map.yaml", "malaga_telecom_map.pgm", "malaga_telecom_loop_reference.log"})
+    for (const char* f : {"malaga_telecom_map.yaml", "malaga_telecom_map.pgm",
+                          "malaga_telecom_loop_reference.log", "malaga_telecom_loop.log"})
       fs::create_symlink(fs::path(INTGRID_DATA_DIR) / f, d / f);
     return d;
   }
@@ -343,6 +344,250 @@ TEST_F(CliDemo, WithoutTheHardwareReportSaysHowToMakeIt) {
   EXPECT_NE(r.output.find("hardware kernels: no report yet"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("bash scripts/hw_reports.sh"), std::string::npos) << r.output;
   EXPECT_NE(summary_json().find("\"hardware\""), std::string::npos);
+}
+
+// `intgrid simulate`.
+
+std::string file_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::size_t records(const std::string& log, const std::string& type) {
+  std::size_t n = 0;
+  for (const std::string& line : lines_of(log)) n += line.rfind(type + " ", 0) == 0 ? 1 : 0;
+  return n;
+}
+
+TEST_F(Cli, SimulateWritesEveryFileAndTheRequestedScans) {
+  const fs::path out = dir_ / "sim";
+  const CliRun r = run("simulate --out " + out.string() + " --scans 25 --obstacles 3 --seed 5");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"sim.log", "truth.log", "world.yaml", "world.pgm", "world.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  expect_png(out / "world.png");
+  EXPECT_NE(r.output.find("\"scans\": 25"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"seed\": 5"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find((out / "sim.log").string()), std::string::npos) << r.output;
+  // sim.log: a scan and an odometry record per step; truth.log: the scans alone.
+  const std::string sim = file_text(out / "sim.log"), truth = file_text(out / "truth.log");
+  EXPECT_EQ(records(sim, "RLASER"), 25u);
+  EXPECT_EQ(records(sim, "ODOM"), 25u);
+  EXPECT_EQ(records(truth, "RLASER"), 25u);
+  EXPECT_EQ(records(truth, "ODOM"), 0u);
+  // The project's reader takes both back: mapping them sees 25 scans of 361 readings.
+  for (const char* log : {"sim.log", "truth.log"}) {
+    const CliRun m = run("map --log " + (out / log).string() + " --out " + (dir_ / "map").string() +
+                         " --res 0.1 --json");
+    ASSERT_EQ(m.status, 0) << m.output;
+    EXPECT_NE(m.output.find("\"scans\": 25,"), std::string::npos) << m.output;
+    EXPECT_NE(m.output.find("\"readings\": 9025,"), std::string::npos) << m.output;
+  }
+  // The world map reads back, and the true path of the default floorplan is within it.
+  const CliRun c = run("compare --map " + (out / "world.yaml").string() + " --reference " +
+                       (out / "world.yaml").string() + " --json");
+  ASSERT_EQ(c.status, 0) << c.output;
+  EXPECT_NE(c.output.find("\"ours_near_reference\": 1.0"), std::string::npos) << c.output;
+}
+
+TEST_F(Cli, SimulateIsByteIdenticalForTheSameSeed) {
+  const std::string options = " --scans 30 --obstacles 4 --dropout 0.1 --contamination 0.05";
+  ASSERT_EQ(run("simulate --out " + (dir_ / "a").string() + options + " --seed 9").status, 0);
+  ASSERT_EQ(run("simulate --out " + (dir_ / "b").string() + options + " --seed 9").status, 0);
+  ASSERT_EQ(run("simulate --out " + (dir_ / "c").string() + options + " --seed 10").status, 0);
+  for (const char* f : {"sim.log", "truth.log", "world.pgm", "world.png"})
+    EXPECT_EQ(file_text(dir_ / "a" / f), file_text(dir_ / "b" / f)) << f;
+  EXPECT_NE(file_text(dir_ / "a" / "sim.log"), file_text(dir_ / "c" / "sim.log"));
+}
+
+TEST_F(Cli, SimulateOnAMapAlongAReferenceTrajectory) {
+  // A 4 m square room map, and a reference log of three poses inside it.
+  std::string pgm = "P5\n40 40\n255\n";
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x) pgm += (x == 0 || y == 0 || x == 39 || y == 39) ? '\0' : '\xfe';
+  write("room.pgm", pgm);
+  const fs::path yaml = write("room.yaml",
+                              "image: room.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+                              "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  const fs::path reference = write("ref.log",
+                                   "RLASER 2 0 0.1 10 1 1 1 0.5 0 0 0 0 5\n"
+                                   "RLASER 2 0 0.1 10 1 1 1.5 0.5 0.1 0 0 0 6\n"
+                                   "RLASER 2 0 0.1 10 1 1 2 0.6 0.2 0 0 0 7\n");
+  const fs::path out = dir_ / "out";
+  CliRun r = run("simulate --out " + out.string() + " --world " + yaml.string() + " --trajectory " +
+                 reference.string() + " --sensor cone --beams 8 --fov 40");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string truth = file_text(out / "truth.log");
+  const std::vector<std::string> lines = lines_of(truth);
+  ASSERT_EQ(lines.size(), 3u) << truth;
+  // RLASER 8 angle0 dangle maxrange r_0..r_7 x y theta ...: the reference's poses.
+  EXPECT_NE(lines[1].find(" 1.5 0.5 0.1 0 0 0 "), std::string::npos) << lines[1];
+  EXPECT_EQ(lines[0].rfind("RLASER 8 0 0.7853981633974483 5 ", 0), 0u) << lines[0];
+  // More scans than the reference holds.
+  expect_error(run("simulate --out " + out.string() + " --world " + yaml.string() +
+                   " --trajectory " + reference.string() + " --scans 5"),
+               "--scans");
+  // Random waypoints in the room.
+  r = run("simulate --out " + out.string() + " --world " + yaml.string() + " --scans 50");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(records(file_text(out / "sim.log"), "RLASER"), 50u);
+}
+
+TEST_F(Cli, SimulateRefusesBadOptionsNamingThem) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--noise -1", "--noise"},
+      {"--noise nan", "--noise"},
+      {"--dropout 1.5", "--dropout"},
+      {"--contamination -0.1", "--contamination"},
+      {"--beams 0", "--beams"},
+      {"--sensor radar", "--sensor"},
+      {"--fov 0", "--fov"},
+      {"--sensor cone --fov 180", "--fov"},
+      {"--max-range 0", "--max-range"},
+      {"--max-range inf", "--max-range"},
+      {"--scans 0", "--scans"},
+      {"--obstacles -2", "--obstacles"},
+      {"--odometry-noise 0.1,0.1,0.1", "--odometry-noise"},
+      {"--odometry-noise 0.1,-1,0.1,0.1", "--odometry-noise"},
+      {"--cell 0", "--cell"},
+      {"--cell 0.6", "--cell"},
+      {"--seed -1", "--seed"},
+      {"--speed 0", "--speed"},
+      {"--large-obstacle -1", "--large-obstacle"},
+      {"--world w.yaml --floorplan", "--floorplan"},
+  };
+  const fs::path out = dir_ / "out";
+  for (const auto& [options, keyword] : cases) {
+    SCOPED_TRACE(options);
+    const CliRun r = run("simulate --out " + out.string() + " " + options);
+    expect_error(r, keyword);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_FALSE(fs::exists(out / "sim.log"));
+  }
+}
+
+TEST_F(Cli, SimulateRefusesAWorldWithoutFreeSpace) {
+  write("dark.pgm", std::string("P5\n10 10\n255\n") + std::string(100, '\0'));
+  const fs::path yaml = write("dark.yaml",
+                              "image: dark.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+                              "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  const fs::path out = dir_ / "out";
+  CliRun r = run("simulate --out " + out.string() + " --world " + yaml.string());
+  expect_error(r, yaml.string() + ": image: the map has no free cell");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_FALSE(fs::exists(out / "sim.log"));
+  r = run("simulate --out " + out.string() + " --world " + (dir_ / "missing.yaml").string());
+  expect_error(r, (dir_ / "missing.yaml").string());
+  EXPECT_EQ(r.status, 2);
+}
+
+// SLAM: a small log that moves, with one scan whose readings are all invalid.
+const char* kSlamLog =
+    "RLASER 5 -1 0.5 10 2 2.1 2.2 2.1 2 0 0 0 0 0 0 100\n"
+    "ODOM 0.1 0 0 100.5\n"
+    "RLASER 5 -1 0.5 10 0 nan -1 10 inf 0.1 0 0 0 0 0 101\n"
+    "RLASER 5 -1 0.5 10 1.8 1.9 2 1.9 1.8 0.2 0 0 0 0 0 102\n";
+
+TEST_F(Cli, SlamWritesTrajectoryMapAndMetricsAndCountsSkippedScans) {
+  const CliRun r = run("slam --log " + write("s.log", kSlamLog).string() + " --out " +
+                       (dir_ / "out").string() + " --max-range 8");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"trajectory.txt", "map.yaml", "map.pgm", "map.png", "metrics.json"})
+    EXPECT_TRUE(fs::exists(dir_ / "out" / f)) << f;
+  std::ifstream trajectory(dir_ / "out" / "trajectory.txt");
+  std::string line;
+  std::vector<std::string> poses;
+  while (std::getline(trajectory, line))
+    if (!line.empty() && line[0] != '#') poses.push_back(line);
+  ASSERT_EQ(poses.size(), 3u);
+  EXPECT_EQ(poses[1].substr(0, 4), "101 ");  // the log's timestamps
+  EXPECT_NE(r.output.find("\"skipped_scans\": 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"unusable_readings\": 5"), std::string::npos) << r.output;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir_ / "out"))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST_F(Cli, SlamRejectsEmptyMalformedAndOdometryFreeLogs) {
+  const std::string out = " --out " + (dir_ / "out").string();
+  CliRun r = run("slam --log " + write("empty.log", "").string() + out);
+  EXPECT_EQ(r.status, 2);
+  expect_error(r, "no scans");
+  r = run("slam --log " + write("bad.log", "RLASER 2 0 1 10 1 x 0 0 0 0 0 0 5\n").string() + out);
+  EXPECT_EQ(r.status, 2);
+  expect_error(r, "bad.log:1: r_1");
+  r = run(
+      "slam --log " +
+      write("still.log", "RLASER 2 0 1 10 1 1 0 0 0 0 0 0 5\nRLASER 2 0 1 10 1 1 0 0 0 0 0 0 6\n")
+          .string() +
+      out);
+  EXPECT_EQ(r.status, 2);
+  expect_error(r, "no odometry");
+  r = run("slam --log " + write("s.log", kSlamLog).string() + out + " --res 0.0125");
+  EXPECT_NE(r.status, 0);
+  expect_error(r, "cell");
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "map.yaml"));
+}
+
+// `figure slam-sweeps --quick`: three CSVs of one row per SLAM run (both arithmetics at each
+// point), finite numbers, E(d) >= 0, the pictures, and the plots, or a note when gnuplot is
+// missing.
+TEST_F(Cli, SlamSweepsWriteTheirCsvsAndPictures) {
+  const std::string header =
+      "lambda,xi,window_cells,window_headings,pose_cells,arith,scans,localizations,mappings,"
+      "seconds,ms_per_scan,int_over_float_seconds,e_sigma_m,e_d_m,e_d_max_m,e_d_centres_m,"
+      "map_occupied_cells,ate_rmse_m,ate_max_m,ate_heading_deg";
+  const std::vector<std::string> columns = fields_of(header);
+  const auto column = [&](const char* name) {
+    return static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) -
+                                    columns.begin());
+  };
+  CliRun r = run("figure slam-sweeps --quick --out " + (dir_ / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  // --quick: lambda 1 and 3, xi 1 and 3, windows 3 and 5, each in int and float.
+  const std::vector<std::pair<std::string, std::pair<const char*, std::vector<int>>>> sweeps = {
+      {"slam_lambda.csv", {"lambda", {1, 1, 3, 3}}},
+      {"slam_xi.csv", {"xi", {1, 1, 3, 3}}},
+      {"slam_depth.csv", {"window_cells", {3, 3, 5, 5}}}};
+  for (const auto& [file, swept] : sweeps) {
+    SCOPED_TRACE(file);
+    std::ifstream in(dir_ / "out" / file);
+    const std::vector<std::string> lines =
+        lines_of({std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()});
+    ASSERT_EQ(lines.size(), 5u);
+    EXPECT_EQ(lines[0], header);
+    for (std::size_t i = 1; i < lines.size(); ++i) {
+      const std::vector<std::string> f = fields_of(lines[i]);
+      ASSERT_EQ(f.size(), columns.size()) << lines[i];
+      EXPECT_EQ(f[column("arith")], i % 2 == 1 ? "int" : "float") << lines[i];
+      EXPECT_EQ(std::stoi(f[column(swept.first)]), swept.second[i - 1]) << lines[i];
+      for (std::size_t c = 0; c < f.size(); ++c) {
+        if (c == column("arith")) continue;
+        std::size_t used = 0;
+        const double value = std::stod(f[c], &used);
+        EXPECT_EQ(used, f[c].size()) << columns[c] << " in " << lines[i];
+        EXPECT_TRUE(std::isfinite(value)) << columns[c] << " in " << lines[i];
+        EXPECT_GE(value, 0.0) << columns[c] << " in " << lines[i];
+      }
+      EXPECT_GT(std::stod(f[column("seconds")]), 0.0) << lines[i];
+      EXPECT_GT(std::stoi(f[column("map_occupied_cells")]), 0) << lines[i];
+      EXPECT_LE(std::stod(f[column("e_d_m")]), std::stod(f[column("e_d_centres_m")])) << lines[i];
+      EXPECT_EQ(std::stoi(f[column("scans")]), 24) << lines[i];
+    }
+  }
+  expect_png(dir_ / "out" / "slam_world.png");
+  expect_png(dir_ / "out" / "slam_maps.png");
+  if (r.output.find("plots skipped") == std::string::npos)
+    for (const char* png : {"slam_lambda.png", "slam_xi.png", "slam_depth.png"})
+      expect_png(dir_ / "out" / png);
+  for (const auto& entry : fs::directory_iterator(dir_ / "out"))
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
+
+  r = run("figure slam-sweeps --quick --scans 12 --gnuplot " + (dir_ / "no-gnuplot").string() +
+          " --out " + (dir_ / "bare").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("plots skipped"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "bare" / "slam_xi.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "bare" / "slam_xi.png"));
 }
 
 }  // namespace

@@ -1,0 +1,461 @@
+// The per-scan path of GridSlam: included only by the files that instantiate it
+// (slam_integer.cpp, slam_double.cpp). Integers only, apart from what the Probabilities
+// type does; the integer instantiation is built without floating-point registers.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "golden/slam.hpp"
+#include "golden/slam_probabilities.hpp"
+
+namespace intgrid {
+namespace slam_detail {
+
+constexpr std::int64_t floor_div(std::int64_t a, std::int64_t b) {
+  const std::int64_t q = a / b;
+  return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
+}
+
+constexpr std::int64_t round_div(std::int64_t a, std::int64_t b) {
+  return floor_div(2 * a + b, 2 * b);
+}
+
+// floor(sqrt(v)) for v >= 0, bit by bit.
+constexpr std::int64_t isqrt(std::int64_t v) {
+  if (v <= 0) return 0;
+  std::uint64_t x = static_cast<std::uint64_t>(v), root = 0, bit = std::uint64_t{1} << 62;
+  while (bit > x) bit >>= 2;
+  while (bit != 0) {
+    if (x >= root + bit) {
+      x -= root + bit;
+      root = (root >> 1) + bit;
+    } else {
+      root >>= 1;
+    }
+    bit >>= 2;
+  }
+  return static_cast<std::int64_t>(root);
+}
+
+// The sum of n probabilities, pairwise: a running U_gamma sum stops growing once the total
+// is some 45 times each term (Phi_plus is 0 past that gap), a pairwise one adds like terms.
+template <class Pr>
+typename Pr::P sum_pairwise(const Pr& pr, const typename Pr::P* p, std::size_t n) {
+  if (n <= 4) {
+    typename Pr::P total = pr.zero();
+    for (std::size_t i = 0; i < n; ++i) total = pr.add(total, p[i]);
+    return total;
+  }
+  return pr.add(sum_pairwise(pr, p, n / 2), sum_pairwise(pr, p + n / 2, n - n / 2));
+}
+
+}  // namespace slam_detail
+
+template <class Pr>
+std::size_t GridSlam<Pr>::pose_index(int i, int j, int k) const {
+  return (static_cast<std::size_t>(k) * static_cast<std::size_t>(n_) +
+          static_cast<std::size_t>(j)) *
+             static_cast<std::size_t>(n_) +
+         static_cast<std::size_t>(i);
+}
+
+template <class Pr>
+std::int64_t GridSlam<Pr>::map_index(int cx, int cy) const {
+  return std::int64_t{cy + setup_.origin_cell_y} * map_.geometry.width + cx + setup_.origin_cell_x;
+}
+
+template <class Pr>
+void GridSlam<Pr>::check_window_inside_map() const {
+  // Every ray starts within the window plus the sensor mount and ends before max range.
+  const std::int64_t mount =
+      std::max(std::abs(setup_.sensor.mount_x_mm), std::abs(setup_.sensor.mount_y_mm));
+  const std::int64_t reach =
+      (setup_.max_range_mm + 3 * std::int64_t{setup_.sigma_mm} + 2 * mount) / setup_.cell_mm + 3;
+  const std::int64_t x0 = ox_ + setup_.origin_cell_x - reach,
+                     x1 = ox_ + n_ + setup_.origin_cell_x + reach;
+  const std::int64_t y0 = oy_ + setup_.origin_cell_y - reach,
+                     y1 = oy_ + n_ + setup_.origin_cell_y + reach;
+  if (x0 < 0 || y0 < 0 || x1 >= map_.geometry.width || y1 >= map_.geometry.height)
+    throw std::runtime_error("SLAM: the pose window at cell (" + std::to_string(ox_ + n_ / 2) +
+                             ", " + std::to_string(oy_ + n_ / 2) +
+                             ") reached the edge of the map; raise the map margin");
+}
+
+// Visits every cell the ray crosses from (px, py) (mm from the centre of the pose's cell) in
+// direction `angle`, as visit(cell dx, cell dy, d) with d the distance in mm along the ray of
+// the cell centre's projection, until d passes limit_mm. Crossings are decided by exact
+// integer comparisons of the distances to the next cell boundaries (Amanatides-Woo).
+template <class Pr>
+template <class Visit>
+void GridSlam<Pr>::walk_ray(std::int64_t px, std::int64_t py, std::int32_t angle,
+                            std::int64_t limit_mm, Visit&& visit) const {
+  using slam_detail::floor_div;
+  const std::int64_t c = setup_.cell_mm, c2 = 2 * c;  // doubled millimetres
+  const std::int64_t x = 2 * px + c, y = 2 * py + c;  // from the cell's lower-left corner
+  std::int64_t ix = floor_div(x, c2), iy = floor_div(y, c2);
+  const std::int64_t cs = cos_units(angle), sn = sin_units(angle);
+  const std::int64_t step_x = cs > 0 ? 1 : -1, step_y = sn > 0 ? 1 : -1;
+  const std::int64_t acs = cs < 0 ? -cs : cs, asn = sn < 0 ? -sn : sn;
+  for (;;) {
+    const std::int64_t d = ((ix * c2 + c - x) * cs + (iy * c2 + c - y) * sn) >> 17;
+    if (d > limit_mm) return;
+    visit(static_cast<int>(ix), static_cast<int>(iy), d);
+    // Distances along each axis to the next boundary; the ray meets first the one with the
+    // smaller bx / |cos| versus by / |sin|.
+    const std::int64_t bx = step_x > 0 ? (ix + 1) * c2 - x : x - ix * c2;
+    const std::int64_t by = step_y > 0 ? (iy + 1) * c2 - y : y - iy * c2;
+    if (asn == 0 || (acs != 0 && bx * asn < by * acs))
+      ix += step_x;
+    else
+      iy += step_y;
+  }
+}
+
+template <class Pr>
+void GridSlam<Pr>::process(const SlamScan& scan) {
+  if (scan.range_mm.size() != setup_.sensor.bearing.size())
+    throw std::invalid_argument("SLAM: a scan has " + std::to_string(scan.range_mm.size()) +
+                                " ranges, the sensor " +
+                                std::to_string(setup_.sensor.bearing.size()));
+  if (scans_ > 0) motion_update(scan);
+  check_window_inside_map();
+  const bool usable = std::any_of(scan.range_mm.begin(), scan.range_mm.end(),
+                                  [&](std::int32_t r) { return r > 0 && r < setup_.max_range_mm; });
+  if (!usable) {
+    ++skipped_;
+  } else {
+    const SlamConfig& c = setup_.config;
+    if (mappings_ > 0 && scans_ % static_cast<std::size_t>(c.lambda) == 0) {
+      localize(scan);
+      ++localizations_;
+    }
+    if (scans_ % static_cast<std::size_t>(c.xi) == 0) {
+      map_scan(scan);
+      ++mappings_;
+    }
+  }
+  update_estimate();
+  ++scans_;
+}
+
+template <class Pr>
+void GridSlam<Pr>::normalize() {
+  const P total = slam_detail::sum_pairwise(prob_, pi_.data(), pi_.size());
+  if (prob_.is_zero(total))
+    throw std::runtime_error("SLAM: the pose grid lost all its probability");
+  for (P& p : pi_) p = prob_.div(p, total);
+}
+
+// Pi'(x') = sum_x Pi(x) K(x' | x, u): for each source heading the displacement R(theta) u is
+// applied to its (x, y) slice with a separable Gaussian, then spread over the target headings.
+// The new window is centred on the predicted mean.
+template <class Pr>
+void GridSlam<Pr>::motion_update(const SlamScan& scan) {
+  using slam_detail::floor_div;
+  using slam_detail::round_div;
+  const std::int64_t dx = scan.odom_dx_mm, dy = scan.odom_dy_mm, dt = scan.odom_dtheta;
+  const std::int64_t trans = slam_detail::isqrt(dx * dx + dy * dy);
+  const std::int64_t rot = dt < 0 ? -dt : dt;
+  const std::int64_t s_xy = std::max<std::int64_t>(
+      1, setup_.motion_xy0_mm +
+             ((setup_.motion_xy_per_mm_q16 * trans + setup_.motion_xy_per_unit_q16 * rot) >> 16));
+  const std::int64_t s_t = std::max<std::int64_t>(
+      1, setup_.motion_theta0 +
+             ((setup_.motion_theta_per_mm_q16 * trans + setup_.motion_theta_per_unit_q16 * rot) >>
+              16));
+  const std::int64_t c = setup_.cell_mm;
+  const std::int64_t unit = kAngleUnitsPerTurn / setup_.config.headings;
+
+  // The predicted mean, in mm and angle units, and the window around it.
+  const auto mean_angle = static_cast<std::int32_t>(estimate_.theta_q8 >> 8);
+  const std::int64_t cm = cos_units(mean_angle), sm = sin_units(mean_angle);
+  const std::int64_t px = round_div(estimate_.x_um, 1000) + ((cm * dx - sm * dy) >> 16);
+  const std::int64_t py = round_div(estimate_.y_um, 1000) + ((sm * dx + cm * dy) >> 16);
+  const std::int64_t pt = round_div(estimate_.theta_q8, 256) + dt;
+  const int nox = static_cast<int>(round_div(px, c)) - n_ / 2;
+  const int noy = static_cast<int>(round_div(py, c)) - n_ / 2;
+  const int nob = static_cast<int>(round_div(pt, unit)) - nt_ / 2;
+
+  // A normalized kernel over shifts m: error (base + m) * step - shift, within 3 sigma (and at
+  // least the nearest shift).
+  std::vector<P> kernel_x, kernel_y, kernel_t;
+  const auto make_kernel = [&](std::vector<P>& k, std::int64_t base, std::int64_t step,
+                               std::int64_t shift, std::int64_t sigma) {
+    const std::int64_t reach = 3 * sigma + step;
+    const std::int64_t lo = -floor_div(reach - shift, step) - base;  // ceil((shift - reach) / step)
+    const std::int64_t hi = floor_div(shift + reach, step) - base;
+    k.clear();
+    P total = prob_.zero();
+    for (std::int64_t m = lo; m <= hi; ++m) {
+      const std::int64_t e = (base + m) * step - shift;
+      k.push_back(prob_.gaussian(e * e, sigma * sigma));
+      total = prob_.add(total, k.back());
+    }
+    for (P& p : k) p = prob_.div(p, total);
+    return lo;
+  };
+
+  std::fill(next_.begin(), next_.end(), prob_.zero());
+  const std::int64_t lo_t = make_kernel(kernel_t, nob - ob_, unit, dt, s_t);
+  const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
+  for (int k = 0; k < nt_; ++k) {
+    const P* slice = &pi_[pose_index(0, 0, k)];
+    if (std::all_of(slice, slice + nn, [&](P p) { return prob_.is_zero(p); })) continue;
+    const std::int32_t a = bin_angle(ob_ + k);
+    const std::int64_t ca = cos_units(a), sa = sin_units(a);
+    const std::int64_t shift_x = (ca * dx - sa * dy) >> 16, shift_y = (sa * dx + ca * dy) >> 16;
+    const std::int64_t lo_x = make_kernel(kernel_x, nox - ox_, c, shift_x, s_xy);
+    const std::int64_t lo_y = make_kernel(kernel_y, noy - oy_, c, shift_y, s_xy);
+    // Along x: row_[j][i'] = sum_i slice[j][i] K_x(i' - i).
+    for (int j = 0; j < n_; ++j)
+      for (int i2 = 0; i2 < n_; ++i2) {
+        P sum = prob_.zero();
+        for (std::size_t m = 0; m < kernel_x.size(); ++m) {
+          const std::int64_t i = i2 - (lo_x + static_cast<std::int64_t>(m));
+          if (i < 0 || i >= n_) continue;
+          sum = prob_.add(sum, prob_.mul(slice[j * n_ + i], kernel_x[m]));
+        }
+        row_[static_cast<std::size_t>(j * n_ + i2)] = sum;
+      }
+    // Along y: plane_[j'][i'] = sum_j row_[j][i'] K_y(j' - j).
+    for (int j2 = 0; j2 < n_; ++j2)
+      for (int i2 = 0; i2 < n_; ++i2) {
+        P sum = prob_.zero();
+        for (std::size_t m = 0; m < kernel_y.size(); ++m) {
+          const std::int64_t j = j2 - (lo_y + static_cast<std::int64_t>(m));
+          if (j < 0 || j >= n_) continue;
+          sum = prob_.add(sum, prob_.mul(row_[static_cast<std::size_t>(j * n_ + i2)], kernel_y[m]));
+        }
+        plane_[static_cast<std::size_t>(j2 * n_ + i2)] = sum;
+      }
+    // Over the headings.
+    for (std::size_t m = 0; m < kernel_t.size(); ++m) {
+      const std::int64_t k2 = k + lo_t + static_cast<std::int64_t>(m);
+      if (k2 < 0 || k2 >= nt_) continue;
+      P* target = &next_[pose_index(0, 0, static_cast<int>(k2))];
+      for (std::size_t q = 0; q < nn; ++q)
+        target[q] = prob_.add(target[q], prob_.mul(plane_[q], kernel_t[m]));
+    }
+  }
+  std::swap(pi_, next_);
+  ox_ = nox;
+  oy_ = noy;
+  ob_ = nob;
+  normalize();
+}
+
+// Pi(x) <- Pi(x) prod_k p(z_k | x, M), p(z | x, M) = floor + sum_c p(z | d_c) P_M(o_c)
+// prod_{c' before c} P_M(e_c'). The rays of each heading are walked once per scan; a pose
+// then reads the map along them at its own cell.
+template <class Pr>
+void GridSlam<Pr>::localize(const SlamScan& scan) {
+  const SlamConfig& config = setup_.config;
+  const std::size_t count = scan.range_mm.size();
+  const std::size_t stride =
+      std::max<std::size_t>(1, (count + static_cast<std::size_t>(config.beams) - 1) /
+                                   static_cast<std::size_t>(config.beams));
+  const std::int64_t sigma = setup_.sigma_mm, window = 3 * sigma;
+  const std::int64_t width = map_.geometry.width;
+  ray_offsets_.clear();
+  ray_likelihoods_.clear();
+  rays_.clear();
+  std::vector<std::uint32_t> heading_rays(static_cast<std::size_t>(nt_) + 1, 0);
+  for (int k = 0; k < nt_; ++k) {
+    heading_rays[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(rays_.size());
+    const std::int32_t a = bin_angle(ob_ + k);
+    const std::int64_t ca = cos_units(a), sa = sin_units(a);
+    const std::int64_t mx = (ca * setup_.sensor.mount_x_mm - sa * setup_.sensor.mount_y_mm) >> 16;
+    const std::int64_t my = (sa * setup_.sensor.mount_x_mm + ca * setup_.sensor.mount_y_mm) >> 16;
+    for (std::size_t b = stride / 2; b < count; b += stride) {
+      const std::int64_t z = scan.range_mm[b];
+      if (z <= 0 || z >= setup_.max_range_mm) continue;
+      Ray ray{static_cast<std::uint32_t>(ray_offsets_.size()), 0, 0, static_cast<std::int32_t>(z)};
+      bool near = false;
+      walk_ray(mx, my, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b], z + window,
+               [&](int cx, int cy, std::int64_t d) {
+                 if (!near && d >= z - window) {
+                   near = true;
+                   ray.mid = static_cast<std::uint32_t>(ray_offsets_.size());
+                 }
+                 ray_offsets_.push_back(static_cast<std::int32_t>(cy * width + cx));
+                 ray_likelihoods_.push_back(near ? prob_.gaussian((z - d) * (z - d), sigma * sigma)
+                                                 : prob_.zero());
+               });
+      if (!near) ray.mid = static_cast<std::uint32_t>(ray_offsets_.size());
+      ray.end = static_cast<std::uint32_t>(ray_offsets_.size());
+      rays_.push_back(ray);
+    }
+  }
+  heading_rays[static_cast<std::size_t>(nt_)] = static_cast<std::uint32_t>(rays_.size());
+
+  const std::int8_t* cells = map_.cells.data();
+  for (int k = 0; k < nt_; ++k)
+    for (int j = 0; j < n_; ++j)
+      for (int i = 0; i < n_; ++i) {
+        P& pose = pi_[pose_index(i, j, k)];
+        if (prob_.is_zero(pose)) continue;
+        const std::int8_t* base = cells + map_index(ox_ + i, oy_ + j);
+        P product = prob_.one();
+        for (std::uint32_t r = heading_rays[static_cast<std::size_t>(k)];
+             r < heading_rays[static_cast<std::size_t>(k) + 1]; ++r) {
+          const Ray& ray = rays_[r];
+          P empty_before =
+              prob_.product_of_empty(base, &ray_offsets_[ray.begin], ray.mid - ray.begin);
+          P sum = prob_.zero();
+          for (std::uint32_t e = ray.mid; e < ray.end; ++e) {
+            const int n = base[ray_offsets_[e]];
+            sum = prob_.add(
+                sum, prob_.mul(prob_.mul(ray_likelihoods_[e], prob_.occupied(n)), empty_before));
+            empty_before = prob_.mul(empty_before, prob_.empty(n));
+          }
+          product = prob_.mul(product, prob_.add(sum, prob_.floor));
+        }
+        pose = prob_.mul(pose, prob_.root(product, config.tempering));
+      }
+  normalize();
+}
+
+// The scan's indices seen from the SLAM-frame cell (cx, cy) and heading bin: for every usable
+// reading, the precomputed narrow ISM laid along its ray; indices of one cell add up.
+template <class Pr>
+void GridSlam<Pr>::add_pose_scan(int cx, int cy, int bin, const SlamScan& scan) {
+  const NarrowIsmTable& ism = setup_.ism;
+  const std::int64_t c = setup_.cell_mm;
+  const std::int32_t a = bin_angle(bin);
+  const std::int64_t ca = cos_units(a), sa = sin_units(a);
+  const std::int64_t mx = (ca * setup_.sensor.mount_x_mm - sa * setup_.sensor.mount_y_mm) >> 16;
+  const std::int64_t my = (sa * setup_.sensor.mount_x_mm + ca * setup_.sensor.mount_y_mm) >> 16;
+  const std::int64_t base = map_index(cx, cy), width = map_.geometry.width;
+  for (std::size_t b = 0; b < scan.range_mm.size(); ++b) {
+    const std::int64_t z = scan.range_mm[b];
+    if (z <= 0 || z >= setup_.max_range_mm) continue;
+    const auto bin_z = static_cast<std::size_t>((z + ism.z_step_mm / 2) / ism.z_step_mm);
+    const std::int8_t* indices = ism.indices.data() + ism.begin[bin_z];
+    const std::int64_t cells = ism.begin[bin_z + 1] - ism.begin[bin_z];
+    walk_ray(mx, my, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b], cells * c + c / 2,
+             [&](int ix, int iy, std::int64_t d) {
+               const std::int64_t k = (d + c / 2) / c;  // line-of-sight cell, 1-based
+               if (k < 1 || k > cells) return;
+               const auto cell = static_cast<std::size_t>(base + std::int64_t{iy} * width + ix);
+               std::int16_t& sum = scan_image_[cell];
+               if (sum == 0) touched_.push_back(static_cast<std::int32_t>(cell));
+               sum = static_cast<std::int16_t>(
+                   std::clamp(sum + indices[k - 1], -setup_.max_seps_index, setup_.max_seps_index));
+             });
+  }
+}
+
+// P(o_c | z, Pi) = sum_x Pi(x) ISM_x(c) over the poses above the cut-off (renormalized), cells
+// a pose's scan does not reach counting 1/2 for it, fused into M. With one pose the sum is that
+// pose's ISM.
+template <class Pr>
+void GridSlam<Pr>::map_scan(const SlamScan& scan) {
+  std::vector<std::pair<std::size_t, P>> poses;
+  std::size_t mode = 0;
+  for (std::size_t q = 0; q < pi_.size(); ++q) {
+    if (prob_.more_probable(pi_[q], pi_[mode])) mode = q;
+    if (!prob_.below_cutoff(pi_[q])) poses.emplace_back(q, pi_[q]);
+  }
+  if (poses.empty()) poses.emplace_back(mode, prob_.one());
+  P total = prob_.zero();
+  for (const auto& pose : poses) total = prob_.add(total, pose.second);
+  const int max = setup_.max_seps_index;
+  std::int8_t* cells = map_.cells.data();
+  const auto fuse_into_map = [&](std::int32_t cell, int n) {
+    cells[cell] = static_cast<std::int8_t>(std::clamp(cells[cell] + n, -max, max));
+  };
+  const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
+  for (const auto& [q, p] : poses) {
+    const int k = static_cast<int>(q / nn), j = static_cast<int>(q % nn) / n_,
+              i = static_cast<int>(q % nn) % n_;
+    add_pose_scan(ox_ + i, oy_ + j, ob_ + k, scan);
+    const P w = prob_.div(p, total);
+    for (const std::int32_t cell : touched_) {
+      const int n = scan_image_[static_cast<std::size_t>(cell)];
+      if (n == 0) continue;  // an index 0 says 1/2: the same as not reaching the cell
+      scan_image_[static_cast<std::size_t>(cell)] = 0;
+      if (poses.size() == 1) {
+        fuse_into_map(cell, n);
+        continue;
+      }
+      std::int32_t& slot = slot_[static_cast<std::size_t>(cell)];
+      if (slot < 0) {
+        slot = static_cast<std::int32_t>(mix_cells_.size());
+        mix_cells_.push_back(cell);
+        mix_occupied_.push_back(prob_.zero());
+        mix_empty_.push_back(prob_.zero());
+        mix_weight_.push_back(prob_.zero());
+      }
+      const auto s = static_cast<std::size_t>(slot);
+      mix_occupied_[s] = prob_.add(mix_occupied_[s], prob_.mul(w, prob_.occupied(n)));
+      mix_empty_[s] = prob_.add(mix_empty_[s], prob_.mul(w, prob_.empty(n)));
+      mix_weight_[s] = prob_.add(mix_weight_[s], w);
+    }
+    touched_.clear();
+  }
+  for (std::size_t s = 0; s < mix_cells_.size(); ++s) {
+    const P rest = prob_.mul(prob_.complement(mix_weight_[s]), prob_.half());
+    fuse_into_map(mix_cells_[s],
+                  prob_.seps_of(prob_.add(mix_occupied_[s], rest), prob_.add(mix_empty_[s], rest)));
+    slot_[static_cast<std::size_t>(mix_cells_[s])] = -1;
+  }
+  mix_cells_.clear();
+  mix_occupied_.clear();
+  mix_empty_.clear();
+  mix_weight_.clear();
+}
+
+// The mean of Pi and its positional standard deviation.
+template <class Pr>
+void GridSlam<Pr>::update_estimate() {
+  using W = typename Pr::Weight;
+  // Weights relative to the most probable pose, which keeps U_gamma's weights in their table.
+  P best = pi_[0];
+  for (const P p : pi_)
+    if (prob_.more_probable(p, best)) best = p;
+  W s{}, sx{}, sy{}, st{}, sxx{}, syy{};
+  for (int k = 0; k < nt_; ++k)
+    for (int j = 0; j < n_; ++j)
+      for (int i = 0; i < n_; ++i) {
+        const W w = prob_.weight(prob_.div(pi_[pose_index(i, j, k)], best));
+        s += w;
+        sx += w * i;
+        sy += w * j;
+        st += w * k;
+        sxx += w * i * i;
+        syy += w * j * j;
+      }
+  const std::int64_t cell_um = std::int64_t{setup_.cell_mm} * 1000;
+  const std::int64_t unit_q8 = std::int64_t{kAngleUnitsPerTurn / setup_.config.headings} * 256;
+  if constexpr (std::is_integral_v<W>) {
+    if (s <= 0) throw std::runtime_error("SLAM: the pose grid has no weight");
+    // Moments of large windows pass 2^63 once shifted: 128 bits (integer all the same).
+    __extension__ using wide = __int128;
+    const auto mean_q16 = [&](W m) { return static_cast<std::int64_t>((wide{m} << 16) / s); };
+    const auto var_q16 = [&](W m2, W m) {
+      const wide mean = mean_q16(m);
+      return static_cast<std::int64_t>(
+          std::max<wide>(0, ((wide{m2} << 16) / s) - ((mean * mean) >> 16)));
+    };
+    estimate_.x_um = ox_ * cell_um + ((mean_q16(sx) * cell_um) >> 16);
+    estimate_.y_um = oy_ * cell_um + ((mean_q16(sy) * cell_um) >> 16);
+    estimate_.theta_q8 = ob_ * unit_q8 + ((mean_q16(st) * unit_q8) >> 16);
+    estimate_.sigma_um =
+        (slam_detail::isqrt((var_q16(sxx, sx) + var_q16(syy, sy)) << 16) * cell_um) >> 16;
+  } else {
+    if (!(s > 0)) throw std::runtime_error("SLAM: the pose grid has no weight");
+    const double mx = sx / s, my = sy / s, mt = st / s;
+    const double var = std::max(0.0, sxx / s - mx * mx) + std::max(0.0, syy / s - my * my);
+    estimate_.x_um = std::llround((ox_ + mx) * static_cast<double>(cell_um));
+    estimate_.y_um = std::llround((oy_ + my) * static_cast<double>(cell_um));
+    estimate_.theta_q8 = std::llround((ob_ + mt) * static_cast<double>(unit_q8));
+    estimate_.sigma_um = std::llround(std::sqrt(var) * static_cast<double>(cell_um));
+  }
+}
+
+}  // namespace intgrid

@@ -1,0 +1,36 @@
+#include "golden/trajectory_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace intgrid {
+
+TrajectoryError absolute_trajectory_error(std::span<const TimedPose> estimate,
+                                          std::span<const TimedPose> reference) {
+  TrajectoryError e;
+  double squares = 0.0, headings = 0.0;
+  std::size_t r = 0;
+  for (const TimedPose& p : estimate) {
+    // Both are in time order: advance the reference to the first time not before p.t - 1 ms.
+    while (r < reference.size() && reference[r].t < p.t - 1e-3) ++r;
+    if (r == reference.size() || std::abs(reference[r].t - p.t) > 1e-3) continue;
+    const double d = std::hypot(p.pose.x - reference[r].pose.x, p.pose.y - reference[r].pose.y);
+    squares += d * d;
+    e.max = std::max(e.max, d);
+    headings += std::abs(std::remainder(p.pose.theta - reference[r].pose.theta, 2.0 * M_PI));
+    ++e.matched;
+  }
+  if (e.matched == 0) throw std::invalid_argument("no pose has a reference at the same time");
+  e.rmse = std::sqrt(squares / static_cast<double>(e.matched));
+  e.mean_heading = headings / static_cast<double>(e.matched);
+  return e;
+}
+
+std::vector<TimedPose> scan_poses(const Log& log) {
+  std::vector<TimedPose> out;
+  for (const Scan& s : log.scans) out.push_back({s.t, s.robot});
+  return out;
+}
+
+}  // namespace intgrid
