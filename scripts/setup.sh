@@ -7,7 +7,6 @@ packages=(
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev
   libsystemc-dev verilator yosys nextpnr-ice40
   gnuplot-nox
-  gnuplot-nox
 )
 missing=()
 for p in "${packages[@]}"; do
