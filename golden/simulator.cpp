@@ -178,13 +178,6 @@ double SimRandom::normal() {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
 }
 
-double wrap_angle(double a) {
-  a = std::remainder(a, kTwoPi);
-  if (a <= -kPi) a += kTwoPi;
-  if (a > kPi) a -= kTwoPi;
-  return a;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Procedural floorplan
 

@@ -77,9 +77,6 @@ inline constexpr double kSimOccupiedThreshold = 0.65;
 // unknown grey 205 of a PGM, P = 50/255, is not free).
 inline constexpr double kSimFreeThreshold = 0.196;
 
-// Angle wrapped to (-pi, pi].
-double wrap_angle(double a);
-
 // ---------------------------------------------------------------------------------------------
 // World: procedural floorplan
 

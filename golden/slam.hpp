@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "golden/grid.hpp"
@@ -160,6 +161,12 @@ class GridSlam {
 
   std::int32_t sin_units(std::int32_t a) const { return setup_.sin_q16[a & 0xFFFF]; }
   std::int32_t cos_units(std::int32_t a) const { return setup_.sin_q16[(a + 16384) & 0xFFFF]; }
+  // (x, y) turned by the angle a, in the units of x and y.
+  std::pair<std::int64_t, std::int64_t> rotate(std::int32_t a, std::int64_t x,
+                                               std::int64_t y) const {
+    const std::int64_t c = cos_units(a), s = sin_units(a);
+    return {(c * x - s * y) >> 16, (s * x + c * y) >> 16};
+  }
   std::int32_t bin_angle(int bin) const {
     return bin * (kAngleUnitsPerTurn / setup_.config.headings);
   }

@@ -173,9 +173,9 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
 
   // The predicted mean, in mm and angle units, and the window around it.
   const auto mean_angle = static_cast<std::int32_t>(estimate_.theta_q8 >> 8);
-  const std::int64_t cm = cos_units(mean_angle), sm = sin_units(mean_angle);
-  const std::int64_t px = round_div(estimate_.x_um, 1000) + ((cm * dx - sm * dy) >> 16);
-  const std::int64_t py = round_div(estimate_.y_um, 1000) + ((sm * dx + cm * dy) >> 16);
+  const auto [move_x, move_y] = rotate(mean_angle, dx, dy);
+  const std::int64_t px = round_div(estimate_.x_um, 1000) + move_x;
+  const std::int64_t py = round_div(estimate_.y_um, 1000) + move_y;
   const std::int64_t pt = round_div(estimate_.theta_q8, 256) + dt;
   const int nox = static_cast<int>(round_div(px, c)) - n_ / 2;
   const int noy = static_cast<int>(round_div(py, c)) - n_ / 2;
@@ -207,8 +207,7 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
     const P* slice = &pi_[pose_index(0, 0, k)];
     if (std::all_of(slice, slice + nn, [&](P p) { return prob_.is_zero(p); })) continue;
     const std::int32_t a = bin_angle(ob_ + k);
-    const std::int64_t ca = cos_units(a), sa = sin_units(a);
-    const std::int64_t shift_x = (ca * dx - sa * dy) >> 16, shift_y = (sa * dx + ca * dy) >> 16;
+    const auto [shift_x, shift_y] = rotate(a, dx, dy);
     const std::int64_t lo_x = make_kernel(kernel_x, nox - ox_, c, shift_x, s_xy);
     const std::int64_t lo_y = make_kernel(kernel_y, noy - oy_, c, shift_y, s_xy);
     // Along x: row_[j][i'] = sum_i slice[j][i] K_x(i' - i).
@@ -268,9 +267,7 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
   for (int k = 0; k < nt_; ++k) {
     heading_rays[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(rays_.size());
     const std::int32_t a = bin_angle(ob_ + k);
-    const std::int64_t ca = cos_units(a), sa = sin_units(a);
-    const std::int64_t mx = (ca * setup_.sensor.mount_x_mm - sa * setup_.sensor.mount_y_mm) >> 16;
-    const std::int64_t my = (sa * setup_.sensor.mount_x_mm + ca * setup_.sensor.mount_y_mm) >> 16;
+    const auto [mx, my] = rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
     for (std::size_t b = stride / 2; b < count; b += stride) {
       const std::int64_t z = scan.range_mm[b];
       if (z <= 0 || z >= setup_.max_range_mm) continue;
@@ -327,9 +324,7 @@ void GridSlam<Pr>::add_pose_scan(int cx, int cy, int bin, const SlamScan& scan) 
   const NarrowIsmTable& ism = setup_.ism;
   const std::int64_t c = setup_.cell_mm;
   const std::int32_t a = bin_angle(bin);
-  const std::int64_t ca = cos_units(a), sa = sin_units(a);
-  const std::int64_t mx = (ca * setup_.sensor.mount_x_mm - sa * setup_.sensor.mount_y_mm) >> 16;
-  const std::int64_t my = (sa * setup_.sensor.mount_x_mm + ca * setup_.sensor.mount_y_mm) >> 16;
+  const auto [mx, my] = rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
   const std::int64_t base = map_index(cx, cy), width = map_.geometry.width;
   for (std::size_t b = 0; b < scan.range_mm.size(); ++b) {
     const std::int64_t z = scan.range_mm[b];

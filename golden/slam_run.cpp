@@ -14,10 +14,6 @@ namespace {
 
 constexpr double kUnitRadians = 2.0 * std::numbers::pi / kAngleUnitsPerTurn;
 
-double wrap_angle(double a) {
-  return std::remainder(a, 2.0 * std::numbers::pi);
-}
-
 std::string scan_name(const Log& log, std::size_t i) {
   char t[64];
   std::snprintf(t, sizeof t, "%.6f", log.scans[i].t);

@@ -18,7 +18,7 @@ TrajectoryError absolute_trajectory_error(std::span<const TimedPose> estimate,
     const double d = std::hypot(p.pose.x - reference[r].pose.x, p.pose.y - reference[r].pose.y);
     squares += d * d;
     e.max = std::max(e.max, d);
-    headings += std::abs(std::remainder(p.pose.theta - reference[r].pose.theta, 2.0 * M_PI));
+    headings += std::abs(wrap_angle(p.pose.theta - reference[r].pose.theta));
     ++e.matched;
   }
   if (e.matched == 0) throw std::invalid_argument("no pose has a reference at the same time");

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace intgrid {
@@ -15,6 +16,12 @@ struct Pose2 {
   double y = 0.0;
   double theta = 0.0;
 };
+
+// An angle wrapped to (-pi, pi].
+inline double wrap_angle(double a) {
+  a = std::remainder(a, 2.0 * std::numbers::pi);
+  return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
+}
 
 // The composition a (+) b: b expressed in a's frame, returned in the world frame.
 inline Pose2 compose(const Pose2& a, const Pose2& b) {
