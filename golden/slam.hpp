@@ -29,7 +29,7 @@ struct SlamConfig {
   double cell = 0.1;               // map cell and pose-grid step (m), a whole number of millimetres
   int headings = 1024;             // heading bins per turn: a power of two, 8..65536
   int window_cells = 11;           // pose-grid cells per side in x and y (odd)
-  int window_headings = 11;        // pose-grid heading bins (odd)
+  int window_headings = 21;        // pose-grid heading bins (odd): +-3.5 degrees at 1024
   int lambda = 1;                  // localization every lambda-th scan
   int xi = 1;                      // mapping every xi-th scan
   double sigma = 0.05;             // range noise of the beam model (m)
@@ -85,6 +85,13 @@ struct SlamEstimate {
   std::int64_t y_um = 0;
   std::int64_t theta_q8 = 0;  // angle units * 256
   std::int64_t sigma_um = 0;  // sqrt(var x + var y)
+};
+
+// A pose in the SLAM frame: mm and angle units (not wrapped).
+struct SlamPose {
+  std::int64_t x_mm = 0;
+  std::int64_t y_mm = 0;
+  std::int64_t theta = 0;
 };
 
 // The narrow ISM of every reading, quantized to S_eps: for a reading rounded to z_step_mm,
@@ -145,12 +152,12 @@ class GridSlam {
   std::size_t localizations() const { return localizations_; }
   std::size_t mappings() const { return mappings_; }
   std::size_t skipped_scans() const { return skipped_; }
-  // The pose grid: window_headings slices of window_cells^2, x fastest, and its origin (the
-  // SLAM-frame cell and absolute heading bin of element 0).
+  // The pose grid: window_headings slices of window_cells^2, x fastest, one cell and one
+  // heading bin apart; its origin (element 0) lies anywhere, at the predicted mean less half
+  // the window, so that no fraction of a move is lost to the lattice.
   const std::vector<P>& pose_grid() const { return pi_; }
-  int window_x() const { return ox_; }
-  int window_y() const { return oy_; }
-  int window_heading() const { return ob_; }
+  // The SLAM-frame pose of pose-grid element q: mm and angle units.
+  SlamPose pose_of(std::size_t q) const;
   const Probabilities& probabilities() const { return prob_; }
 
  private:
@@ -167,8 +174,11 @@ class GridSlam {
     const std::int64_t c = cos_units(a), s = sin_units(a);
     return {(c * x - s * y) >> 16, (s * x + c * y) >> 16};
   }
-  std::int32_t bin_angle(int bin) const {
-    return bin * (kAngleUnitsPerTurn / setup_.config.headings);
+  std::int32_t heading_unit() const { return kAngleUnitsPerTurn / setup_.config.headings; }
+  // The heading of slice k, wrapped to one turn.
+  std::int32_t slice_angle(int k) const {
+    return static_cast<std::int32_t>((theta0_ + std::int64_t{k} * heading_unit()) &
+                                     (kAngleUnitsPerTurn - 1));
   }
   std::size_t pose_index(int i, int j, int k) const;
   std::int64_t map_index(int cx, int cy) const;
@@ -180,7 +190,7 @@ class GridSlam {
   void motion_update(const SlamScan& scan);
   void localize(const SlamScan& scan);
   void map_scan(const SlamScan& scan);
-  void add_pose_scan(int cx, int cy, int bin, const SlamScan& scan);
+  void add_pose_scan(int cx, int cy, std::int32_t angle, const SlamScan& scan);
   void update_estimate();
   void normalize();
 
@@ -189,7 +199,10 @@ class GridSlam {
   Grid<std::int8_t> map_;
   std::vector<P> pi_, next_, row_, plane_;
   int n_ = 0, nt_ = 0;  // window cells per side, headings
-  int ox_ = 0, oy_ = 0, ob_ = 0;
+  // The window's origin: SLAM-frame cell (ox_, oy_) with the pose (fx_, fy_) mm from its centre
+  // (|f| <= half a cell), and heading theta0_.
+  int ox_ = 0, oy_ = 0;
+  std::int64_t fx_ = 0, fy_ = 0, theta0_ = 0;
   SlamEstimate estimate_;
   std::size_t scans_ = 0, localizations_ = 0, mappings_ = 0, skipped_ = 0;
   // Scratch of the localization and mapping events.

@@ -65,6 +65,16 @@ std::size_t GridSlam<Pr>::pose_index(int i, int j, int k) const {
 }
 
 template <class Pr>
+SlamPose GridSlam<Pr>::pose_of(std::size_t q) const {
+  const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
+  const auto i = static_cast<std::int64_t>(q % nn % static_cast<std::size_t>(n_));
+  const auto j = static_cast<std::int64_t>(q % nn / static_cast<std::size_t>(n_));
+  const auto k = static_cast<std::int64_t>(q / nn);
+  const std::int64_t c = setup_.cell_mm;
+  return {(ox_ + i) * c + fx_, (oy_ + j) * c + fy_, theta0_ + k * heading_unit()};
+}
+
+template <class Pr>
 std::int64_t GridSlam<Pr>::map_index(int cx, int cy) const {
   return std::int64_t{cy + setup_.origin_cell_y} * map_.geometry.width + cx + setup_.origin_cell_x;
 }
@@ -169,30 +179,28 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
              ((setup_.motion_theta_per_mm_q16 * trans + setup_.motion_theta_per_unit_q16 * rot) >>
               16));
   const std::int64_t c = setup_.cell_mm;
-  const std::int64_t unit = kAngleUnitsPerTurn / setup_.config.headings;
+  const std::int64_t unit = heading_unit();
 
-  // The predicted mean, in mm and angle units, and the window around it.
+  // The predicted mean, in mm and angle units, and the window centred on it.
   const auto mean_angle = static_cast<std::int32_t>(estimate_.theta_q8 >> 8);
   const auto [move_x, move_y] = rotate(mean_angle, dx, dy);
-  const std::int64_t px = round_div(estimate_.x_um, 1000) + move_x;
-  const std::int64_t py = round_div(estimate_.y_um, 1000) + move_y;
-  const std::int64_t pt = round_div(estimate_.theta_q8, 256) + dt;
-  const int nox = static_cast<int>(round_div(px, c)) - n_ / 2;
-  const int noy = static_cast<int>(round_div(py, c)) - n_ / 2;
-  const int nob = static_cast<int>(round_div(pt, unit)) - nt_ / 2;
+  const std::int64_t x0 = round_div(estimate_.x_um, 1000) + move_x - (n_ / 2) * c;
+  const std::int64_t y0 = round_div(estimate_.y_um, 1000) + move_y - (n_ / 2) * c;
+  const std::int64_t theta0 = round_div(estimate_.theta_q8, 256) + dt - (nt_ / 2) * unit;
+  const int nox = static_cast<int>(round_div(x0, c)), noy = static_cast<int>(round_div(y0, c));
 
-  // A normalized kernel over shifts m: error (base + m) * step - shift, within 3 sigma (and at
-  // least the nearest shift).
+  // A normalized kernel over index shifts m: error m * step + offset, within 3 sigma (and at
+  // least the nearest shift); offset is the move of the origin less the odometry's.
   std::vector<P> kernel_x, kernel_y, kernel_t;
-  const auto make_kernel = [&](std::vector<P>& k, std::int64_t base, std::int64_t step,
-                               std::int64_t shift, std::int64_t sigma) {
+  const auto make_kernel = [&](std::vector<P>& k, std::int64_t offset, std::int64_t step,
+                               std::int64_t sigma) {
     const std::int64_t reach = 3 * sigma + step;
-    const std::int64_t lo = -floor_div(reach - shift, step) - base;  // ceil((shift - reach) / step)
-    const std::int64_t hi = floor_div(shift + reach, step) - base;
+    const std::int64_t lo = -floor_div(reach + offset, step);  // ceil((-reach - offset) / step)
+    const std::int64_t hi = floor_div(reach - offset, step);
     k.clear();
     P total = prob_.zero();
     for (std::int64_t m = lo; m <= hi; ++m) {
-      const std::int64_t e = (base + m) * step - shift;
+      const std::int64_t e = m * step + offset;
       k.push_back(prob_.gaussian(e * e, sigma * sigma));
       total = prob_.add(total, k.back());
     }
@@ -201,15 +209,14 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
   };
 
   std::fill(next_.begin(), next_.end(), prob_.zero());
-  const std::int64_t lo_t = make_kernel(kernel_t, nob - ob_, unit, dt, s_t);
+  const std::int64_t lo_t = make_kernel(kernel_t, theta0 - theta0_ - dt, unit, s_t);
   const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
   for (int k = 0; k < nt_; ++k) {
     const P* slice = &pi_[pose_index(0, 0, k)];
     if (std::all_of(slice, slice + nn, [&](P p) { return prob_.is_zero(p); })) continue;
-    const std::int32_t a = bin_angle(ob_ + k);
-    const auto [shift_x, shift_y] = rotate(a, dx, dy);
-    const std::int64_t lo_x = make_kernel(kernel_x, nox - ox_, c, shift_x, s_xy);
-    const std::int64_t lo_y = make_kernel(kernel_y, noy - oy_, c, shift_y, s_xy);
+    const auto [shift_x, shift_y] = rotate(slice_angle(k), dx, dy);
+    const std::int64_t lo_x = make_kernel(kernel_x, x0 - (ox_ * c + fx_) - shift_x, c, s_xy);
+    const std::int64_t lo_y = make_kernel(kernel_y, y0 - (oy_ * c + fy_) - shift_y, c, s_xy);
     // Along x: row_[j][i'] = sum_i slice[j][i] K_x(i' - i).
     for (int j = 0; j < n_; ++j)
       for (int i2 = 0; i2 < n_; ++i2) {
@@ -244,7 +251,9 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
   std::swap(pi_, next_);
   ox_ = nox;
   oy_ = noy;
-  ob_ = nob;
+  fx_ = x0 - nox * c;
+  fy_ = y0 - noy * c;
+  theta0_ = theta0;
   normalize();
 }
 
@@ -266,15 +275,15 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
   std::vector<std::uint32_t> heading_rays(static_cast<std::size_t>(nt_) + 1, 0);
   for (int k = 0; k < nt_; ++k) {
     heading_rays[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(rays_.size());
-    const std::int32_t a = bin_angle(ob_ + k);
+    const std::int32_t a = slice_angle(k);
     const auto [mx, my] = rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
     for (std::size_t b = stride / 2; b < count; b += stride) {
       const std::int64_t z = scan.range_mm[b];
       if (z <= 0 || z >= setup_.max_range_mm) continue;
       Ray ray{static_cast<std::uint32_t>(ray_offsets_.size()), 0, 0, static_cast<std::int32_t>(z)};
       bool near = false;
-      walk_ray(mx, my, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b], z + window,
-               [&](int cx, int cy, std::int64_t d) {
+      walk_ray(mx + fx_, my + fy_, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b],
+               z + window, [&](int cx, int cy, std::int64_t d) {
                  if (!near && d >= z - window) {
                    near = true;
                    ray.mid = static_cast<std::uint32_t>(ray_offsets_.size());
@@ -317,13 +326,13 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
   normalize();
 }
 
-// The scan's indices seen from the SLAM-frame cell (cx, cy) and heading bin: for every usable
+// The scan's indices seen from the window's offset in the SLAM-frame cell (cx, cy), heading
+// `a`: for every usable
 // reading, the precomputed narrow ISM laid along its ray; indices of one cell add up.
 template <class Pr>
-void GridSlam<Pr>::add_pose_scan(int cx, int cy, int bin, const SlamScan& scan) {
+void GridSlam<Pr>::add_pose_scan(int cx, int cy, std::int32_t a, const SlamScan& scan) {
   const NarrowIsmTable& ism = setup_.ism;
   const std::int64_t c = setup_.cell_mm;
-  const std::int32_t a = bin_angle(bin);
   const auto [mx, my] = rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
   const std::int64_t base = map_index(cx, cy), width = map_.geometry.width;
   for (std::size_t b = 0; b < scan.range_mm.size(); ++b) {
@@ -332,8 +341,8 @@ void GridSlam<Pr>::add_pose_scan(int cx, int cy, int bin, const SlamScan& scan) 
     const auto bin_z = static_cast<std::size_t>((z + ism.z_step_mm / 2) / ism.z_step_mm);
     const std::int8_t* indices = ism.indices.data() + ism.begin[bin_z];
     const std::int64_t cells = ism.begin[bin_z + 1] - ism.begin[bin_z];
-    walk_ray(mx, my, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b], cells * c + c / 2,
-             [&](int ix, int iy, std::int64_t d) {
+    walk_ray(mx + fx_, my + fy_, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b],
+             cells * c + c / 2, [&](int ix, int iy, std::int64_t d) {
                const std::int64_t k = (d + c / 2) / c;  // line-of-sight cell, 1-based
                if (k < 1 || k > cells) return;
                const auto cell = static_cast<std::size_t>(base + std::int64_t{iy} * width + ix);
@@ -368,7 +377,7 @@ void GridSlam<Pr>::map_scan(const SlamScan& scan) {
   for (const auto& [q, p] : poses) {
     const int k = static_cast<int>(q / nn), j = static_cast<int>(q % nn) / n_,
               i = static_cast<int>(q % nn) % n_;
-    add_pose_scan(ox_ + i, oy_ + j, ob_ + k, scan);
+    add_pose_scan(ox_ + i, oy_ + j, slice_angle(k), scan);
     const P w = prob_.div(p, total);
     for (const std::int32_t cell : touched_) {
       const int n = scan_image_[static_cast<std::size_t>(cell)];
@@ -426,7 +435,10 @@ void GridSlam<Pr>::update_estimate() {
         syy += w * j * j;
       }
   const std::int64_t cell_um = std::int64_t{setup_.cell_mm} * 1000;
-  const std::int64_t unit_q8 = std::int64_t{kAngleUnitsPerTurn / setup_.config.headings} * 256;
+  const std::int64_t unit_q8 = std::int64_t{heading_unit()} * 256;
+  const std::int64_t x0_um = (ox_ * std::int64_t{setup_.cell_mm} + fx_) * 1000;
+  const std::int64_t y0_um = (oy_ * std::int64_t{setup_.cell_mm} + fy_) * 1000;
+  const std::int64_t theta0_q8 = theta0_ * 256;
   if constexpr (std::is_integral_v<W>) {
     if (s <= 0) throw std::runtime_error("SLAM: the pose grid has no weight");
     // Moments of large windows pass 2^63 once shifted: 128 bits (integer all the same).
@@ -437,18 +449,18 @@ void GridSlam<Pr>::update_estimate() {
       return static_cast<std::int64_t>(
           std::max<wide>(0, ((wide{m2} << 16) / s) - ((mean * mean) >> 16)));
     };
-    estimate_.x_um = ox_ * cell_um + ((mean_q16(sx) * cell_um) >> 16);
-    estimate_.y_um = oy_ * cell_um + ((mean_q16(sy) * cell_um) >> 16);
-    estimate_.theta_q8 = ob_ * unit_q8 + ((mean_q16(st) * unit_q8) >> 16);
+    estimate_.x_um = x0_um + ((mean_q16(sx) * cell_um) >> 16);
+    estimate_.y_um = y0_um + ((mean_q16(sy) * cell_um) >> 16);
+    estimate_.theta_q8 = theta0_q8 + ((mean_q16(st) * unit_q8) >> 16);
     estimate_.sigma_um =
         (slam_detail::isqrt((var_q16(sxx, sx) + var_q16(syy, sy)) << 16) * cell_um) >> 16;
   } else {
     if (!(s > 0)) throw std::runtime_error("SLAM: the pose grid has no weight");
     const double mx = sx / s, my = sy / s, mt = st / s;
     const double var = std::max(0.0, sxx / s - mx * mx) + std::max(0.0, syy / s - my * my);
-    estimate_.x_um = std::llround((ox_ + mx) * static_cast<double>(cell_um));
-    estimate_.y_um = std::llround((oy_ + my) * static_cast<double>(cell_um));
-    estimate_.theta_q8 = std::llround((ob_ + mt) * static_cast<double>(unit_q8));
+    estimate_.x_um = x0_um + std::llround(mx * static_cast<double>(cell_um));
+    estimate_.y_um = y0_um + std::llround(my * static_cast<double>(cell_um));
+    estimate_.theta_q8 = theta0_q8 + std::llround(mt * static_cast<double>(unit_q8));
     estimate_.sigma_um = std::llround(std::sqrt(var) * static_cast<double>(cell_um));
   }
 }

@@ -191,7 +191,7 @@ GridSlam<Pr>::GridSlam(const SlamSetup& setup, Pr probabilities)
   row_.assign(static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_), prob_.zero());
   plane_ = row_;
   ox_ = oy_ = -(n_ / 2);
-  ob_ = -(nt_ / 2);
+  theta0_ = -std::int64_t{nt_ / 2} * heading_unit();
   pi_[pose_index(n_ / 2, n_ / 2, nt_ / 2)] = prob_.one();
   scan_image_.assign(map_.cells.size(), 0);
   slot_.assign(map_.cells.size(), -1);

@@ -509,10 +509,8 @@ MixtureError mixture_map_error(int ugamma_steps_per_halving) {
 
   // The poses above the cut-off and their weights, in double.
   const Pr& pr = mixed.probabilities();
-  const int n = config.window_cells;
-  const std::size_t nn = static_cast<std::size_t>(n) * n;
   struct Weighted {
-    int cx, cy, bin;
+    SlamPose pose;
     double w;
   };
   std::vector<Weighted> poses;
@@ -525,9 +523,7 @@ MixtureError mixture_map_error(int ugamma_steps_per_halving) {
       w = pr.u.to_probability(p);
     else
       w = p;
-    poses.push_back({mixed.window_x() + static_cast<int>(q % nn) % n,
-                     mixed.window_y() + static_cast<int>(q % nn) / n,
-                     mixed.window_heading() + static_cast<int>(q / nn), w});
+    poses.push_back({mixed.pose_of(q), w});
     total += w;
   }
   r.poses = poses.size();
@@ -544,15 +540,15 @@ MixtureError mixture_map_error(int ugamma_steps_per_halving) {
     GridSlam<DoubleProbabilities> alone(exact_setup,
                                         make_probabilities<DoubleProbabilities>(exact_setup));
     SlamScan there = scans[1];
-    there.odom_dx_mm = x.cx * exact_setup.cell_mm;
-    there.odom_dy_mm = x.cy * exact_setup.cell_mm;
-    there.odom_dtheta = x.bin * (kAngleUnitsPerTurn / exact.headings);
+    there.odom_dx_mm = static_cast<std::int32_t>(x.pose.x_mm);
+    there.odom_dy_mm = static_cast<std::int32_t>(x.pose.y_mm);
+    there.odom_dtheta = static_cast<std::int32_t>(x.pose.theta);
     alone.process(scans[0]);
     alone.process(there);
     const std::size_t at = mode_of(alone);
-    EXPECT_EQ(alone.window_x() + static_cast<int>(at % nn) % n, x.cx);
-    EXPECT_EQ(alone.window_y() + static_cast<int>(at % nn) / n, x.cy);
-    EXPECT_EQ(alone.window_heading() + static_cast<int>(at / nn), x.bin);
+    EXPECT_EQ(alone.pose_of(at).x_mm, x.pose.x_mm);
+    EXPECT_EQ(alone.pose_of(at).y_mm, x.pose.y_mm);
+    EXPECT_EQ(alone.pose_of(at).theta, x.pose.theta);
     EXPECT_EQ(alone.pose_grid()[at], 1.0);  // alone indeed
     const double w = x.w / total;
     for (std::size_t c = 0; c < cells; ++c) {
@@ -872,8 +868,7 @@ SlamConfig localization_config() {
 
 struct Localized {
   Pose2 estimate;
-  int mode_x = 0, mode_y = 0, mode_heading = 0;  // SLAM-frame cell and heading bin of the mode
-  int window_x = 0, window_y = 0, window_heading = 0;
+  SlamPose mode, window;  // the mode's pose and the window's origin (element 0)
   std::size_t localizations = 0;
 };
 
@@ -894,16 +889,10 @@ Localized localize_once(const Pose2& displacement) {
   GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
   slam.process(scans[0]);
   slam.process(scans[1]);
-  const int n = config.window_cells;
-  const std::size_t mode = mode_of(slam), nn = static_cast<std::size_t>(n) * n;
   Localized r;
   r.estimate = pose_of(slam.estimate());
-  r.window_x = slam.window_x();
-  r.window_y = slam.window_y();
-  r.window_heading = slam.window_heading();
-  r.mode_x = r.window_x + static_cast<int>(mode % nn) % n;
-  r.mode_y = r.window_y + static_cast<int>(mode % nn) / n;
-  r.mode_heading = r.window_heading + static_cast<int>(mode / nn);
+  r.mode = slam.pose_of(mode_of(slam));
+  r.window = slam.pose_of(0);
   r.localizations = slam.localizations();
   return r;
 }
@@ -913,6 +902,8 @@ void expect_localization_moves_toward_the_truth(const char* name) {
   const SlamConfig config = localization_config();
   const int n = config.window_cells, nt = config.window_headings;
   const double c = config.cell, bin = 2.0 * kPi / config.headings;
+  const double unit = 2.0 * kPi / kAngleUnitsPerTurn;  // radians per angle unit
+  const long cell_mm = std::lround(c * 1000.0);
   for (const Pose2& truth :
        {Pose2{0.04, -0.03, 0.0175}, Pose2{0.09, -0.04, 0.0175}, Pose2{-0.08, 0.09, -0.012},
         Pose2{0.0, 0.1, 0.0}, Pose2{0.0, 0.0, 0.02}, Pose2{-0.11, -0.07, -0.015}}) {
@@ -932,24 +923,25 @@ void expect_localization_moves_toward_the_truth(const char* name) {
     else
       EXPECT_LT(after_theta, bin) << name;
     // The mode is the grid pose nearest the truth: its cell, and its heading within one bin.
-    EXPECT_EQ(r.mode_x, static_cast<int>(std::lround(truth.x / c))) << name << " " << truth.x;
-    EXPECT_EQ(r.mode_y, static_cast<int>(std::lround(truth.y / c))) << name << " " << truth.y;
-    EXPECT_LE(std::abs(r.mode_heading * bin - truth.theta), 1.5 * bin)
+    EXPECT_EQ(r.mode.x_mm, std::lround(truth.x / c) * cell_mm) << name << " " << truth.x;
+    EXPECT_EQ(r.mode.y_mm, std::lround(truth.y / c) * cell_mm) << name << " " << truth.y;
+    EXPECT_LE(std::abs(static_cast<double>(r.mode.theta) * unit - truth.theta), 1.5 * bin)
         << name << " " << truth.theta;
     std::printf(
         "[slam] localization, %s: truth (%.3f, %.3f, %.4f): position error %.4f -> %.4f m, "
-        "heading error %.4f -> %.4f rad; mode (%d, %d, %d)\n",
+        "heading error %.4f -> %.4f rad; mode (%lld mm, %lld mm, %lld units)\n",
         name, truth.x, truth.y, truth.theta, before_xy, after_xy, before_theta, after_theta,
-        r.mode_x, r.mode_y, r.mode_heading);
+        static_cast<long long>(r.mode.x_mm), static_cast<long long>(r.mode.y_mm),
+        static_cast<long long>(r.mode.theta));
   }
   // Read from the mapped pose itself: the mode stays at the centre of an unmoved window.
   const Localized still = localize_once<Pr>({});
-  EXPECT_EQ(still.mode_x, 0) << name;
-  EXPECT_EQ(still.mode_y, 0) << name;
-  EXPECT_EQ(still.mode_heading, 0) << name;
-  EXPECT_EQ(still.window_x, -(n / 2));
-  EXPECT_EQ(still.window_y, -(n / 2));
-  EXPECT_EQ(still.window_heading, -(nt / 2));
+  EXPECT_EQ(still.mode.x_mm, 0) << name;
+  EXPECT_EQ(still.mode.y_mm, 0) << name;
+  EXPECT_EQ(still.mode.theta, 0) << name;
+  EXPECT_EQ(still.window.x_mm, -(n / 2) * cell_mm);
+  EXPECT_EQ(still.window.y_mm, -(n / 2) * cell_mm);
+  EXPECT_EQ(still.window.theta, -(nt / 2) * (kAngleUnitsPerTurn / config.headings));
   EXPECT_LT(std::hypot(still.estimate.x, still.estimate.y), 0.01) << name;
   EXPECT_LT(std::abs(still.estimate.theta), 0.5 * bin) << name;
   std::printf("[slam] localization, %s, still: estimate (%.4f, %.4f, %.5f)\n", name,
