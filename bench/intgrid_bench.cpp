@@ -7,10 +7,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <numbers>
 #include <random>
 #include <span>
 #include <vector>
 
+#include "golden/global_localization.hpp"
 #include "golden/grid.hpp"
 #include "golden/ism_kernel.hpp"
 #include "golden/mapping.hpp"
@@ -20,6 +24,7 @@
 #include "golden/sectoral_ism.hpp"
 #include "golden/sensor_model.hpp"
 #include "golden/seps.hpp"
+#include "golden/simulator.hpp"
 #include "golden/types.hpp"
 #include "golden/ugamma.hpp"
 #include "host/log_io.hpp"
@@ -376,6 +381,134 @@ void BM_Double_Fuse(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kUGammaTerms));
 }
 BENCHMARK(BM_Double_Fuse);
+
+// ---------------------------------------------------------------------------
+// Global localization (ALGORITHMS.md 7): the time of one reading on pose grids of N = 10^4..10^7
+// cells (0.2 m x 64 headings over square rooms of growing side, 10 cm map cells, an outer wall and
+// random 0.4-1.2 m boxes covering about 8% of the floor, fixed seed), for the pose grid (claims
+// table + dense form, integer), its walk form, and Markov localization (Gaussian beam model,
+// double, one exp per candidate and a normalization). 60 readings simulated from one free pose
+// (LiDAR all round, 8 m, 3 cm noise), used in turn. Markov's belief restarts from uniform every 8
+// readings and the pose grid's sum every 4096 (outside the timing), so no denormals and no
+// overflow.
+
+struct GlobalLocBench {
+  std::unique_ptr<LocalizationMap> map;
+  std::vector<RangeReading> readings;
+};
+
+const GlobalLocBench& global_loc_bench(std::int64_t pose_cells) {
+  static std::map<std::int64_t, GlobalLocBench> cache;
+  auto it = cache.find(pose_cells);
+  if (it != cache.end()) return it->second;
+  constexpr double kPoseRes = 0.2, kCell = 0.1;
+  constexpr int kHeadings = 64;
+  const int side = static_cast<int>(std::lround(std::sqrt(double(pose_cells) / kHeadings)));
+  const int cells = 2 * side;  // map cells a side
+  ProbabilityGrid world(GridGeometry{cells, cells, kCell, 0.0, 0.0}, 0.0);
+  for (int k = 0; k < cells; ++k) {
+    world.at(k, 0) = world.at(k, cells - 1) = 1.0;
+    world.at(0, k) = world.at(cells - 1, k) = 1.0;
+  }
+  SimRandom random(17);
+  const double area = double(cells) * double(cells);
+  for (double covered = 0.0; covered < 0.08 * area;) {
+    const int w = 4 + static_cast<int>(random.below(9)), h = 4 + static_cast<int>(random.below(9));
+    const int x0 = static_cast<int>(random.below(std::uint64_t(std::max(1, cells - w))));
+    const int y0 = static_cast<int>(random.below(std::uint64_t(std::max(1, cells - h))));
+    for (int y = y0; y < std::min(cells, y0 + h); ++y)
+      for (int x = x0; x < std::min(cells, x0 + w); ++x) world.at(x, y) = 1.0;
+    covered += w * h;
+  }
+  GlobalLocConfig config;
+  config.pose_res = kPoseRes;
+  config.headings = kHeadings;
+  config.max_range = 8.0;
+  GlobalLocBench b;
+  b.map = std::make_unique<LocalizationMap>(world, 0.65, 0.196, config);
+  // A free pose near the middle.
+  int i = b.map->width() / 2, j = b.map->height() / 2;
+  while (!b.map->is_candidate(i, j)) i = (i + 1) % b.map->width();
+  const Pose2 truth = b.map->pose_of(i, j, 0);
+  const Scan scan = simulate_scan(world, lidar_sensor(60, 2.0 * std::numbers::pi, 8.0),
+                                  RangeNoiseConfig{0.03, 0.0, 0.0}, {truth.x, truth.y, 0.3}, 5);
+  b.readings = readings_of(scan, 0, config.max_range);
+  return cache.emplace(pose_cells, std::move(b)).first->second;
+}
+
+void report_global_loc(benchmark::State& state, const GlobalLocBench& b) {
+  state.counters["pose_cells"] = static_cast<double>(b.map->pose_cells());
+  state.counters["candidates"] = static_cast<double>(b.map->candidate_cells());
+  state.SetItemsProcessed(state.iterations());  // readings
+  state.SetComplexityN(static_cast<std::int64_t>(b.map->pose_cells()));
+}
+
+// One form of the pose occupancy grid (dense or walk) adding one reading's claims.
+using PoseGridForm = void (LocalizationMap::*)(const ReadingClaims&, std::span<std::int32_t>) const;
+
+void BM_GlobalLoc_PoseGrid(benchmark::State& state, PoseGridForm form) {
+  const GlobalLocBench& b = global_loc_bench(state.range(0));
+  std::vector<std::int32_t> pog(b.map->pose_cells(), 0);
+  std::size_t n = 0;
+  for (auto _ : state) {
+    if (n % 4096 == 4095) {
+      state.PauseTiming();
+      std::fill(pog.begin(), pog.end(), 0);
+      state.ResumeTiming();
+    }
+    ((*b.map).*form)(b.map->claims(b.readings[n++ % b.readings.size()]), pog);
+    benchmark::DoNotOptimize(pog.data());
+    benchmark::ClobberMemory();
+  }
+  report_global_loc(state, b);
+}
+BENCHMARK_CAPTURE(BM_GlobalLoc_PoseGrid, dense, &LocalizationMap::add_reading_dense)
+    ->RangeMultiplier(10)
+    ->Range(10000, 10000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);
+BENCHMARK_CAPTURE(BM_GlobalLoc_PoseGrid, walk, &LocalizationMap::add_reading_walk)
+    ->RangeMultiplier(10)
+    ->Range(10000, 10000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);
+
+void BM_GlobalLoc_Markov(benchmark::State& state) {
+  const GlobalLocBench& b = global_loc_bench(state.range(0));
+  auto markov = std::make_unique<MarkovLocalization>(*b.map, GlobalMethod::markov);
+  std::size_t n = 0;
+  for (auto _ : state) {
+    if (n % 8 == 7) {
+      state.PauseTiming();
+      markov = std::make_unique<MarkovLocalization>(*b.map, GlobalMethod::markov);
+      state.ResumeTiming();
+    }
+    benchmark::DoNotOptimize(markov->update(b.readings[n++ % b.readings.size()]));
+  }
+  report_global_loc(state, b);
+}
+BENCHMARK(BM_GlobalLoc_Markov)
+    ->RangeMultiplier(10)
+    ->Range(10000, 10000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);
+
+// The whole localization of the 60 readings from no prior (localize_global: every reading, then
+// the best cell) on the 10^6-cell grid, per method; items = readings.
+void BM_GlobalLoc_Localize(benchmark::State& state) {
+  const GlobalLocBench& b = global_loc_bench(1000000);
+  const auto method = static_cast<GlobalMethod>(state.range(0));
+  for (auto _ : state) {
+    const GlobalEstimate e = localize_global(*b.map, b.readings, Pose2{}, method);
+    benchmark::DoNotOptimize(e.score);
+  }
+  state.counters["pose_cells"] = static_cast<double>(b.map->pose_cells());
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(b.readings.size()));
+}
+BENCHMARK(BM_GlobalLoc_Localize)
+    ->ArgName("method")
+    ->DenseRange(0, 3)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -58,7 +58,8 @@ void distance_transform_1d(double* f, std::size_t n, std::size_t stride, std::ve
   for (std::size_t q = 0; q < n; ++q) f[q * stride] = d[q];
 }
 
-// Squared distance, in cells, from each cell centre to the nearest occupied cell centre.
+}  // namespace
+
 std::vector<double> squared_distance_transform(const std::vector<char>& occupied, int width,
                                                int height) {
   std::vector<double> f(occupied.size());
@@ -71,8 +72,6 @@ std::vector<double> squared_distance_transform(const std::vector<char>& occupied
   for (std::size_t y = 0; y < h; ++y) distance_transform_1d(&f[y * w], w, 1, d, v, z);
   return f;
 }
-
-}  // namespace
 
 ObstacleDistance distance_to_nearest_obstacle(const ProbabilityGrid& built, double built_threshold,
                                               const ProbabilityGrid& truth, double truth_threshold,

@@ -4,10 +4,17 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "golden/grid.hpp"
 
 namespace intgrid {
+
+// Squared distance, in cells, from each cell centre of a width x height grid (x fastest) to the
+// nearest occupied cell centre (Felzenszwalb and Huttenlocher's exact Euclidean transform);
+// infinity everywhere if no cell is occupied.
+std::vector<double> squared_distance_transform(const std::vector<char>& occupied, int width,
+                                               int height);
 
 struct ObstacleDistance {
   std::size_t cells = 0;  // occupied cells of the built map

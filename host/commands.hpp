@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "golden/global_localization.hpp"
 #include "golden/slam.hpp"
 #include "host/map_job.hpp"
 
@@ -17,8 +18,13 @@ void add_figure_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_slam_command(CLI::App& app);
+void add_globloc_command(CLI::App& app);
 // The SLAM settings as options (--res, --lambda, --xi, ...), shared by slam and the figures.
 void add_slam_options(CLI::App& cmd, SlamConfig& config);
+// Global localization's settings (--pose-res, --headings, --sigma, --max-range) and --method,
+// shared by globloc and the figures.
+void add_global_loc_options(CLI::App& cmd, GlobalLocConfig& config);
+CLI::Option* add_global_method_option(CLI::App& cmd, GlobalMethod& method);
 
 // Shared by the subcommands.
 void print_json(const nlohmann::json& j);

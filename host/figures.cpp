@@ -25,6 +25,7 @@
 #include "host/figure_layout.hpp"
 #include "host/image_io.hpp"
 #include "host/polar_render.hpp"
+#include "host/text_io.hpp"
 
 namespace intgrid {
 namespace {
@@ -33,17 +34,6 @@ namespace fs = std::filesystem;
 
 constexpr Rgb kInk{0, 0, 0};
 constexpr ProbabilityScale kScale = ProbabilityScale::diverging;
-__attribute__((format(printf, 1, 2))) std::string printed(const char* format, ...) {
-  std::va_list args;
-  va_start(args, format);
-  std::va_list again;
-  va_copy(again, args);
-  std::string text(static_cast<std::size_t>(std::vsnprintf(nullptr, 0, format, args)), '\0');
-  va_end(args);
-  std::vsnprintf(text.data(), text.size() + 1, format, again);
-  va_end(again);
-  return text;
-}
 
 std::string scale_caption() {
   return printed(

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   intgrid::add_demo_command(app);
   intgrid::add_simulate_command(app);
   intgrid::add_slam_command(app);
+  intgrid::add_globloc_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,12 +1,6 @@
 #include "host/slam_sweeps.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
@@ -25,10 +19,10 @@
 #include "host/atomic_file.hpp"
 #include "host/commands.hpp"
 #include "host/figure_layout.hpp"
+#include "host/gnuplot.hpp"
 #include "host/image_io.hpp"
 #include "host/progress.hpp"
-
-extern char** environ;
+#include "host/text_io.hpp"
 
 namespace intgrid {
 namespace {
@@ -40,15 +34,6 @@ constexpr int kMapPixelsPerCell = 2;    // slam_maps.png
 constexpr Rgb kTruthColor{30, 160, 30};
 constexpr Rgb kOdometryColor{150, 150, 150};
 constexpr Rgb kSlamColor{220, 30, 30};
-
-[[gnu::format(printf, 1, 2)]] std::string printed(const char* format, ...) {
-  char text[512];
-  va_list values;
-  va_start(values, format);
-  std::vsnprintf(text, sizeof text, format, values);
-  va_end(values);
-  return text;
-}
 
 const char* arith_name(Arithmetic a) {
   return a == Arithmetic::integer ? "int" : "float";
@@ -378,52 +363,9 @@ void write_maps_png(const std::filesystem::path& file, const std::vector<RunResu
 // ---------------------------------------------------------------------------------------------
 // gnuplot
 
-// Runs program with args, stdout and stderr to /dev/null if quiet. The exit status, or nullopt
-// if the program could not be started (not installed).
-std::optional<int> run_program(const std::string& program, const std::vector<std::string>& args,
-                               bool quiet) {
-  std::vector<char*> argv;
-  std::vector<std::string> all{program};
-  all.insert(all.end(), args.begin(), args.end());
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  if (quiet) {
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  }
-  pid_t pid = 0;
-  const int error = posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) return std::nullopt;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return std::nullopt;
-  if (WIFEXITED(status)) {
-    // 127: the shell's "command not found", which some exec wrappers report.
-    if (WEXITSTATUS(status) == 127) return std::nullopt;
-    return WEXITSTATUS(status);
-  }
-  return -1;
-}
-
-// A string in gnuplot's single quotes.
-std::string gp_quoted(const std::string& text) {
-  std::string out = "'";
-  for (const char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 struct Labels {
   std::string lambda, xi, sigma;
 };
-
-std::string terminal_line(bool cairo, int width, int height) {
-  return cairo ? printed("set terminal pngcairo size %d,%d noenhanced font 'sans,11'\n", width,
-                         height)
-               : printed("set terminal png size %d,%d noenhanced\n", width, height);
-}
 
 std::string datablock(const char* name, const std::vector<Point>& points, const char* columns,
                       double (*x)(const RunSpec&), double (*y)(const RunResult&),
@@ -467,7 +409,7 @@ std::string plot_script(const std::vector<Point>& lambda, const std::vector<Poin
       "using 1:%d title 'integer (U_gamma, S_eps)' lw 2 pt 7 lc rgb '#d01c1c', '' using 1:%d "
       "title 'double' lw 2 pt 5 lc rgb '#1c4cd0'\n";
 
-  s += terminal_line(cairo, 1300, 520);
+  s += gp_terminal_line(cairo, 1300, 520);
   s += "set output " + gp_quoted(lambda_png.string()) + "\n" + lines;
   s += "set multiplot layout 1,2 title " +
        gp_quoted(title + ": localization every " + l.lambda + "-th scan (" + l.xi +
@@ -480,7 +422,7 @@ std::string plot_script(const std::vector<Point>& lambda, const std::vector<Poin
   s += "plot $lambda " + printed(plot_pair.c_str(), 4, 5);
   s += "unset multiplot\nunset output\nreset\n";
 
-  s += terminal_line(cairo, 1800, 520);
+  s += gp_terminal_line(cairo, 1800, 520);
   s += "set output " + gp_quoted(xi_png.string()) + "\n" + lines;
   s += "set multiplot layout 1,3 title " +
        gp_quoted(title + ": mapping every " + l.xi + "-th scan (" + l.lambda +
@@ -495,7 +437,7 @@ std::string plot_script(const std::vector<Point>& lambda, const std::vector<Poin
   s += "plot $xi " + printed(plot_pair.c_str(), 6, 7);
   s += "unset multiplot\nunset output\nreset\n";
 
-  s += terminal_line(cairo, 1300, 520);
+  s += gp_terminal_line(cairo, 1300, 520);
   s += "set output " + gp_quoted(depth_png.string()) + "\n" + lines;
   s += "set multiplot layout 1,2 title " +
        gp_quoted(title + ": run time against the pose grid's size (thesis figure 3.14)") + "\n";
@@ -518,29 +460,11 @@ bool write_plots(const SlamSweepOptions& o, const std::vector<Point>& lambda,
   const bool cairo = *probe == 0;
   AtomicFile lambda_png(o.out / "slam_lambda.png"), xi_png(o.out / "slam_xi.png"),
       depth_png(o.out / "slam_depth.png");
-  // The script sits in a temporary file that is never committed, so it is removed at the end.
-  AtomicFile script(o.out / "slam_plots.gp");
-  script.stream() << plot_script(lambda, xi, depth, title, cairo, o.config.lambda, o.config.xi,
-                                 lambda_png.temporary_path(), xi_png.temporary_path(),
-                                 depth_png.temporary_path());
-  script.stream().flush();
-  if (!script.stream())
-    throw std::runtime_error("cannot write the gnuplot script in " + o.out.string());
-  const std::optional<int> status =
-      run_program(o.gnuplot, {script.temporary_path().string()}, false);
-  if (!status) return false;
-  if (*status != 0)
-    throw std::runtime_error(
-        printed("%s failed (exit status %d) making the plots; the CSVs are "
-                "written",
-                o.gnuplot.c_str(), *status));
-  for (AtomicFile* png : {&lambda_png, &xi_png, &depth_png}) {
-    std::error_code error;
-    if (std::filesystem::file_size(png->temporary_path(), error) == 0 || error)
-      throw std::runtime_error(o.gnuplot + " wrote no " + png->target().string());
-    png->commit();
-  }
-  return true;
+  return draw_pngs(
+      o.gnuplot,
+      plot_script(lambda, xi, depth, title, cairo, o.config.lambda, o.config.xi,
+                  lambda_png.temporary_path(), xi_png.temporary_path(), depth_png.temporary_path()),
+      o.out / "slam_plots.gp", {&lambda_png, &xi_png, &depth_png});
 }
 
 // ---------------------------------------------------------------------------------------------

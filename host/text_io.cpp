@@ -6,12 +6,26 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cstdarg>
+#include <cstdio>
 #include <cstring>
 #include <type_traits>
 
 #include "host/input_error.hpp"
 
 namespace intgrid {
+
+std::string printed(const char* format, ...) {
+  std::va_list args;
+  va_start(args, format);
+  std::va_list again;
+  va_copy(again, args);
+  std::string text(static_cast<std::size_t>(std::vsnprintf(nullptr, 0, format, args)), '\0');
+  va_end(args);
+  std::vsnprintf(text.data(), text.size() + 1, format, again);
+  va_end(again);
+  return text;
+}
 namespace {
 
 [[noreturn]] void throw_unreadable(const std::filesystem::path& file, const char* what, int error) {

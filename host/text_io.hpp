@@ -10,6 +10,9 @@
 
 namespace intgrid {
 
+// printf into a std::string, for the commands' tables and messages.
+[[gnu::format(printf, 1, 2)]] std::string printed(const char* format, ...);
+
 // The whole content of a file. A missing or unreadable file is an InputError with field "file".
 std::string read_input_file(const std::filesystem::path& file);
 

@@ -590,4 +590,164 @@ TEST_F(Cli, SlamSweepsWriteTheirCsvsAndPictures) {
   EXPECT_FALSE(fs::exists(dir_ / "bare" / "slam_xi.png"));
 }
 
+// `intgrid globloc` and `figure globloc-sweeps`: a 4 x 3 m room at 10 cm with two blocks that
+// break its symmetry.
+fs::path write_globloc_room(const fs::path& dir) {
+  std::string pgm = "P5\n40 30\n255\n";
+  for (int row = 0; row < 30; ++row)
+    for (int x = 0; x < 40; ++x) {
+      const int y = 29 - row;  // PGM rows run from the top
+      const bool wall = x == 0 || y == 0 || x == 39 || y == 29;
+      const bool block =
+          (x >= 8 && x <= 13 && y >= 5 && y <= 9) || (x >= 28 && x <= 30 && y >= 18 && y <= 25);
+      pgm += wall || block ? '\0' : '\xfe';
+    }
+  std::ofstream(dir / "room.pgm", std::ios::binary) << pgm;
+  std::ofstream(dir / "room.yaml") << "image: room.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n"
+                                      "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  return dir / "room.yaml";
+}
+
+TEST_F(Cli, GlobLocWritesPosesPictureAndMetricsAndScoresAgainstAReference) {
+  const fs::path room = write_globloc_room(dir_);
+  const fs::path sim = dir_ / "sim";
+  ASSERT_EQ(run("simulate --out " + sim.string() + " --world " + room.string() +
+                " --scans 6 --seed 3 --noise 0.01")
+                .status,
+            0);
+  const fs::path out = dir_ / "out";
+  const CliRun r = run("globloc --map " + room.string() + " --log " + (sim / "sim.log").string() +
+                       " --out " + out.string() + " --reference " + (sim / "truth.log").string() +
+                       " --scans 1:4 --pose-res 0.1 --headings 64 --beams 90");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"poses.txt", "pose_grid.png", "metrics.json"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  expect_png(out / "pose_grid.png");
+  const std::vector<std::string> lines = lines_of(file_text(out / "poses.txt"));
+  ASSERT_EQ(lines.size(), 5u) << file_text(out / "poses.txt");
+  EXPECT_EQ(lines[0].rfind("# t x y theta score", 0), 0u) << lines[0];
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    std::istringstream fields(lines[i]);
+    double t = 0, x = 0, y = 0, theta = 0, score = 0;
+    ASSERT_TRUE(fields >> t >> x >> y >> theta >> score) << lines[i];
+    EXPECT_NEAR(t, 1e9 + 0.2 * static_cast<double>(i), 1e-6) << lines[i];  // scans 1 to 4
+    EXPECT_TRUE(x > 0 && x < 4 && y > 0 && y < 3) << lines[i];
+  }
+  // Every scan has a reference pose; in this room each is found.
+  EXPECT_NE(r.output.find("\"matched\": 4"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"within\": 4"), std::string::npos) << r.output;
+  EXPECT_NE(file_text(out / "metrics.json").find("\"share\": 1.0"), std::string::npos);
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
+
+  // The baselines run too.
+  for (const char* method : {"markov", "markov-mixture", "likelihood-field"}) {
+    const CliRun b = run("globloc --map " + room.string() + " --log " + (sim / "sim.log").string() +
+                         " --out " + (dir_ / method).string() + " --scans 2:2 --method " + method);
+    ASSERT_EQ(b.status, 0) << method << b.output;
+    EXPECT_NE(b.output.find(std::string("\"method\": \"") + method + "\""), std::string::npos);
+  }
+}
+
+TEST_F(Cli, GlobLocRefusesBadInputsNamingFileAndField) {
+  const fs::path room = write_globloc_room(dir_);
+  const fs::path log = write("room.log", "RLASER 4 -0.5 0.3 10 1.0 1.2 1.1 1.3" + kScanTail +
+                                             "RLASER 4 -0.5 0.3 10 1.0 1.2 1.1 1.3" + kScanTail);
+  const fs::path out = dir_ / "out";
+  const auto globloc = [&](const fs::path& map, const fs::path& scans, const std::string& more) {
+    return run("globloc --map " + map.string() + " --log " + scans.string() + " --out " +
+               out.string() + " " + more);
+  };
+  // A map without any free cell.
+  write("dark.pgm", std::string("P5\n10 10\n255\n") + std::string(100, '\0'));
+  const fs::path dark = write("dark.yaml",
+                              "image: dark.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+                              "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  CliRun r = globloc(dark, log, "");
+  expect_error(r, dark.string() + ": image: the map has no free cell");
+  EXPECT_EQ(r.status, 2);
+  // A pose grid finer than the map.
+  r = globloc(room, log, "--pose-res 0.05");
+  expect_error(r, room.string() + ": resolution: the pose resolution --pose-res 0.05 m is finer");
+  EXPECT_EQ(r.status, 2);
+  // A log without any valid reading.
+  const fs::path dead = write("dead.log", "RLASER 4 -0.5 0.3 10 0 0 nan 11" + kScanTail);
+  r = globloc(room, dead, "");
+  expect_error(r, dead.string() + ": ranges: no selected scan holds a valid reading");
+  EXPECT_EQ(r.status, 2);
+  // Bad scan ranges.
+  for (const char* scans : {"5:2", "0:2", "a:1", "1", "1:2:3"}) {
+    SCOPED_TRACE(scans);
+    r = globloc(room, log, std::string("--scans ") + scans);
+    expect_error(r, log.string() + ": --scans: '" + scans + "'");
+    EXPECT_EQ(r.status, 2);
+  }
+  // A log line that does not parse names its line and field.
+  const fs::path bad = write("bad.log", "RLASER 4 -0.5 0.3 10 1.0 1.0 x1 1.0" + kScanTail);
+  r = globloc(room, bad, "");
+  expect_error(r, bad.string() + ":1: r_2");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_FALSE(fs::exists(out / "poses.txt"));
+}
+
+// `figure globloc-sweeps --quick`: one CSV per sweep (two points, four methods each), the same for
+// one and two threads, and the plots (or a note when gnuplot is missing).
+TEST_F(Cli, GlobLocSweepsWriteTheirCsvsAndPlotsTheSameForAnyThreadCount) {
+  const fs::path room = write_globloc_room(dir_);
+  const std::string options =
+      "figure globloc-sweeps --quick --trials 3 --pose-res 0.1 --headings 32 --seed 4 --map " +
+      room.string();
+  const CliRun one = run(options + " --threads 1 --out " + (dir_ / "one").string());
+  ASSERT_EQ(one.status, 0) << one.output;
+  const CliRun two = run(options + " --threads 2 --out " + (dir_ / "two").string());
+  ASSERT_EQ(two.status, 0) << two.output;
+  EXPECT_NE(one.output.find("success: position error <= 0.2 m (2 pose cells) AND heading error "
+                            "<= 22.5 deg (2 heading bins)"),
+            std::string::npos)
+      << one.output;
+  const std::vector<std::pair<std::string, std::string>> sweeps = {
+      {"readings", "readings"},
+      {"noise", "noise_m"},
+      {"contamination", "contamination"},
+      {"obstacles", "obstacles"},
+      {"large_obstacle", "distance_m"}};
+  const char* methods[] = {"pog", "markov", "markov-mixture", "likelihood-field"};
+  for (const auto& [sweep, variable] : sweeps) {
+    SCOPED_TRACE(sweep);
+    const std::string csv = file_text(dir_ / "one" / ("globloc_" + sweep + ".csv"));
+    EXPECT_EQ(csv, file_text(dir_ / "two" / ("globloc_" + sweep + ".csv")));
+    const std::vector<std::string> lines = lines_of(csv);
+    ASSERT_EQ(lines.size(), 1u + 2 * 4) << csv;
+    EXPECT_EQ(lines[0], variable +
+                            ",method,trials,failed_setups,mean_readings,successes,success_rate,"
+                            "mean_position_error_m,median_position_error_m,mean_heading_error_deg");
+    for (std::size_t i = 1; i < lines.size(); ++i) {
+      const std::vector<std::string> f = fields_of(lines[i]);
+      ASSERT_EQ(f.size(), 10u) << lines[i];
+      EXPECT_EQ(f[1], methods[(i - 1) % 4]) << lines[i];
+      EXPECT_EQ(std::stoi(f[2]) + std::stoi(f[3]), 3) << lines[i];
+      const double rate = std::stod(f[6]);
+      EXPECT_TRUE(rate >= 0.0 && rate <= 1.0) << lines[i];
+      for (std::size_t c = 7; c < 10; ++c) EXPECT_GE(std::stod(f[c]), 0.0) << lines[i];
+    }
+    if (one.output.find("plots skipped") == std::string::npos)
+      expect_png(dir_ / "one" / ("globloc_" + sweep + ".png"));
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "one" / "globloc_timing.csv"));
+  // With 60 clean readings in this room every method finds nearly every pose.
+  const std::vector<std::string> readings =
+      lines_of(file_text(dir_ / "one" / "globloc_readings.csv"));
+  for (std::size_t i = 5; i < readings.size(); ++i)
+    EXPECT_GE(std::stod(fields_of(readings[i])[6]), 0.6) << readings[i];
+  for (const auto& entry : fs::directory_iterator(dir_ / "one"))
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
+  // --sweeps runs only those: the same rows as in the full run, no other sweep's file.
+  const CliRun only = run(options + " --sweeps contamination --out " + (dir_ / "only").string());
+  ASSERT_EQ(only.status, 0) << only.output;
+  EXPECT_EQ(file_text(dir_ / "only" / "globloc_contamination.csv"),
+            file_text(dir_ / "one" / "globloc_contamination.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "only" / "globloc_readings.csv"));
+  EXPECT_NE(run(options + " --sweeps speed --out " + (dir_ / "bad").string()).status, 0);
+}
+
 }  // namespace
