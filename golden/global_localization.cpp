@@ -294,7 +294,7 @@ double LocalizationMap::distance_to_occupied(double x, double y) const {
   return occupied_distance_[map_geometry_.index(a, b)];
 }
 
-constexpr double kLeastPmaxGain = 1e-3;
+constexpr double kLeastLogOdds = 1e-9;
 
 double LocalizationMap::effective_sigma(double z) const {
   return std::hypot(config_.sigma, config_.pose_res, heading_bin() * z);
@@ -321,15 +321,21 @@ ReadingClaims LocalizationMap::claims(const RangeReading& reading) const {
     std::vector<std::int32_t>& table = group_claims[gi];
     table.assign(cells + 1, 0);
     int top = 0;
-    const double pmax = *std::max_element(ism.begin(), ism.end());
-    // A table whose Pmax is within kLeastPmaxGain of 1/2 says nothing (Section 2.4: the step is
-    // far finer than sigma_eff); raising it to seps_levels would only amplify rounding.
-    if (pmax > 0.5 + kLeastPmaxGain && pmax < 1.0) {
-      const SepsCodec codec = SepsCodec::for_levels(config_.seps_bits, pmax, config_.seps_levels);
-      for (std::size_t k = 1; k <= cells; ++k) {
-        table[k] = codec.quantize_conservative(ism[k - 1]);
-        top = std::max(top, table[k]);
-      }
+    // The reading's own S_eps step: lambda = logit(Pmax) / seps_levels, so its strongest claim
+    // is seps_levels however broad its ISM; indices to the nearest step. A reading whose ISM
+    // is broad (far, so sigma_eff is wide) still says where the robot cannot be and where it
+    // may be, and counts as much as a near one.
+    // Past some 15 m with 64 headings Pmax is 1/2 to within rounding (1e-14): the floor on
+    // lambda rounds such a reading's positive claims to 0, so by rule 2 it claims nothing,
+    // instead of amplifying rounding noise to seps_levels.
+    const double lambda =
+        std::max(logit(*std::max_element(ism.begin(), ism.end())), kLeastLogOdds) /
+        config_.seps_levels;
+    for (std::size_t k = 1; k <= cells; ++k) {
+      const double n = std::clamp(logit(ism[k - 1]) / lambda, -double(config_.seps_levels),
+                                  double(config_.seps_levels));
+      table[k] = static_cast<std::int32_t>(std::lround(n));
+      top = std::max(top, table[k]);
     }
     const int veto = std::min(top, config_.veto_levels);
     for (std::int32_t& n : table) n = std::clamp(n, -veto, top);  // rule 2, tightened

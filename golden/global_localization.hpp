@@ -65,10 +65,11 @@ std::vector<RangeReading> readings_of(const Scan& scan, int beams, double max_ra
 // point; applying them is integer only. A pose with heading bin k reads the reading along direction
 // bin d = (k + shift) mod headings; claim[d][rho] is the S_eps index of a pose whose first hit
 // along d lies rho steps away: the narrow ISM of z on that direction's step with sigma_eff,
-// quantized conservatively with the reading's own codec (for_levels(seps_bits, the table's Pmax,
-// seps_levels)) and clamped to [-min(n_top[d], veto_levels), n_top[d]] (n_top[d] the largest
-// positive index of the table, 0 if none). rho = 0 (never a candidate's first hit) holds 0,
-// and rho >= claim[d].size() (past z plus the ISM's window of 8 sigma_eff, or no hit) claims 0.
+// quantized to the nearest step of the reading's own S_eps scale (lambda = max(logit(the
+// table's Pmax), 1e-9) / seps_levels) and clamped to [-min(n_top[d], veto_levels), n_top[d]]
+// (n_top[d] the largest positive index of the table, 0 if none). rho = 0 (never a candidate's first
+// hit) holds 0, and rho >= claim[d].size() (past z plus the ISM's window of 8 sigma_eff, or no hit)
+// claims 0.
 struct ReadingClaims {
   int shift = 0;
   double sigma_eff = 0.0;  // hypot(sigma, pose_res, bin * z), bin = 2 pi / headings (rule 1)

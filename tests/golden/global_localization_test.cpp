@@ -3,7 +3,6 @@
 // against each other, the estimate on simulated scans for every method, ties and errors.
 #include "golden/global_localization.hpp"
 #include "golden/global_localization_experiments.hpp"
-#include "golden/seps.hpp"
 
 #include <gtest/gtest.h>
 
@@ -206,18 +205,20 @@ TEST(GlobalLocalization, ClaimsAreTheClampedQuantizedNarrowIsm) {
       const auto n =
           static_cast<std::size_t>(std::ceil((reading.range + 8 * sigma_eff) / step)) + 1;
       const std::vector<double> ism = narrow_ism({sigma_eff, 0.0}, reading.range, step, n);
-      // The reading's own codec: its Pmax is index seps_levels.
+      // The reading's own S_eps step: its Pmax is index seps_levels, nearest rounding.
       const double pmax = *std::max_element(ism.begin(), ism.end());
+      const double lambda = std::max(std::log(pmax / (1.0 - pmax)), 1e-9) / config.seps_levels;
       std::vector<int> raw(n + 1, 0);
       int top = 0;
-      if (pmax > 0.5 + 1e-3) {
-        const SepsCodec codec = SepsCodec::for_levels(8, pmax, config.seps_levels);
-        for (std::size_t k = 1; k <= n; ++k) {
-          raw[k] = codec.quantize_conservative(ism[k - 1]);
-          top = std::max(top, raw[k]);
-        }
-        EXPECT_GE(top, config.seps_levels - 1);  // conservative: Pmax itself may round down one
-        EXPECT_LE(top, config.seps_levels);
+      for (std::size_t k = 1; k <= n; ++k) {
+        const double p = ism[k - 1];
+        raw[k] = static_cast<int>(
+            std::lround(std::clamp(std::log(p / (1.0 - p)) / lambda, -double(config.seps_levels),
+                                   double(config.seps_levels))));
+        top = std::max(top, raw[k]);
+      }
+      if (pmax - 0.5 > 1e-6) {
+        EXPECT_EQ(top, config.seps_levels);
       }
       EXPECT_EQ(claims.n_top[std::size_t(d)], top);
       const int veto = std::min(top, config.veto_levels);
@@ -237,12 +238,9 @@ TEST(GlobalLocalization, ClaimsAreTheClampedQuantizedNarrowIsm) {
   }
   EXPECT_GT(clamps, 0);  // the bound bites: the raw ISM's empty indices reach past -veto_levels
   EXPECT_GT(vetoes, 0);
-  // Every informative reading, near or far, claims up to seps_levels: far ones are not drowned by
-  // near ones. One whose sigma_eff dwarfs the step (6 m: 1.2 m against 0.1 m steps, with 32
-  // headings) claims nothing.
-  EXPECT_GE(lmap.claims({0.3, 0.0}).n_top[0], config.seps_levels - 1);
-  EXPECT_GE(lmap.claims({1.0, 0.0}).n_top[0], config.seps_levels - 1);
-  EXPECT_EQ(lmap.claims({6.0, 0.0}).n_top[0], 0);
+  // Every reading, near or far, claims up to seps_levels: far ones are not drowned by near ones.
+  EXPECT_EQ(lmap.claims({0.3, 0.0}).n_top[0], config.seps_levels);
+  EXPECT_EQ(lmap.claims({4.0, 0.0}).n_top[0], config.seps_levels);
 }
 
 // ---------------------------------------------------------------------------------------------
