@@ -24,15 +24,20 @@ bool finite_positive(double v) {
   return std::isfinite(v) && v > 0.0;
 }
 
+// What is wrong with a reading, or nullptr if it can be used.
+const char* reading_problem(const RangeReading& r, double max_range) {
+  if (!finite_positive(r.range)) return "reading range must be a positive finite number";
+  if (r.range >= max_range) return "reading range must be below max_range";
+  if (!std::isfinite(r.bearing)) return "reading bearing must be finite";
+  return nullptr;
+}
+
 bool usable(const RangeReading& r, double max_range) {
-  return finite_positive(r.range) && r.range < max_range && std::isfinite(r.bearing);
+  return reading_problem(r, max_range) == nullptr;
 }
 
 void check_reading(const RangeReading& r, double max_range) {
-  if (!finite_positive(r.range))
-    throw std::invalid_argument("reading range must be a positive finite number");
-  if (r.range >= max_range) throw std::invalid_argument("reading range must be below max_range");
-  if (!std::isfinite(r.bearing)) throw std::invalid_argument("reading bearing must be finite");
+  if (const char* problem = reading_problem(r, max_range)) throw std::invalid_argument(problem);
 }
 
 const GlobalLocConfig& checked(const GlobalLocConfig& c) {

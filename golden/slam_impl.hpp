@@ -209,14 +209,15 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
   };
 
   std::fill(next_.begin(), next_.end(), prob_.zero());
-  const std::int64_t lo_t = make_kernel(kernel_t, theta0 - theta0_ - dt, unit, s_t);
+  const SlamPose origin = pose_of(0);  // the old window's
+  const std::int64_t lo_t = make_kernel(kernel_t, theta0 - origin.theta - dt, unit, s_t);
   const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
   for (int k = 0; k < nt_; ++k) {
     const P* slice = &pi_[pose_index(0, 0, k)];
     if (std::all_of(slice, slice + nn, [&](P p) { return prob_.is_zero(p); })) continue;
     const auto [shift_x, shift_y] = rotate(slice_angle(k), dx, dy);
-    const std::int64_t lo_x = make_kernel(kernel_x, x0 - (ox_ * c + fx_) - shift_x, c, s_xy);
-    const std::int64_t lo_y = make_kernel(kernel_y, y0 - (oy_ * c + fy_) - shift_y, c, s_xy);
+    const std::int64_t lo_x = make_kernel(kernel_x, x0 - origin.x_mm - shift_x, c, s_xy);
+    const std::int64_t lo_y = make_kernel(kernel_y, y0 - origin.y_mm - shift_y, c, s_xy);
     // Along x: row_[j][i'] = sum_i slice[j][i] K_x(i' - i).
     for (int j = 0; j < n_; ++j)
       for (int i2 = 0; i2 < n_; ++i2) {
@@ -436,9 +437,9 @@ void GridSlam<Pr>::update_estimate() {
       }
   const std::int64_t cell_um = std::int64_t{setup_.cell_mm} * 1000;
   const std::int64_t unit_q8 = std::int64_t{heading_unit()} * 256;
-  const std::int64_t x0_um = (ox_ * std::int64_t{setup_.cell_mm} + fx_) * 1000;
-  const std::int64_t y0_um = (oy_ * std::int64_t{setup_.cell_mm} + fy_) * 1000;
-  const std::int64_t theta0_q8 = theta0_ * 256;
+  const SlamPose origin = pose_of(0);
+  const std::int64_t x0_um = origin.x_mm * 1000, y0_um = origin.y_mm * 1000;
+  const std::int64_t theta0_q8 = origin.theta * 256;
   if constexpr (std::is_integral_v<W>) {
     if (s <= 0) throw std::runtime_error("SLAM: the pose grid has no weight");
     // Moments of large windows pass 2^63 once shifted: 128 bits (integer all the same).

@@ -8,17 +8,19 @@
 
 namespace intgrid {
 
+// The command line's names of the methods: global_method_name's.
+static std::map<std::string, GlobalMethod> method_names() {
+  std::map<std::string, GlobalMethod> names;
+  for (const GlobalMethod m : kGlobalMethods) names.emplace(global_method_name(m), m);
+  return names;
+}
+
 CLI::Option* add_global_method_option(CLI::App& cmd, GlobalMethod& method) {
   return cmd
       .add_option("--method", method,
                   "pog: pose occupancy grid (S_eps index sums); markov: Gaussian beam model; "
                   "markov-mixture: hit + short + random + max; likelihood-field")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, GlobalMethod>{{"pog", GlobalMethod::pose_grid},
-                                              {"markov", GlobalMethod::markov},
-                                              {"markov-mixture", GlobalMethod::markov_mixture},
-                                              {"likelihood-field", GlobalMethod::likelihood_field}},
-          CLI::ignore_case))
+      ->transform(CLI::CheckedTransformer(method_names(), CLI::ignore_case))
       ->default_str("pog");
 }
 

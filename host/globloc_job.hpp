@@ -53,6 +53,11 @@ struct GlobLocJobResult {
   nlohmann::json metrics;          // what metrics.json holds
 };
 
+// Every method, in the order of the tables and CSVs.
+inline constexpr GlobalMethod kGlobalMethods[] = {GlobalMethod::pose_grid, GlobalMethod::markov,
+                                                  GlobalMethod::markov_mixture,
+                                                  GlobalMethod::likelihood_field};
+
 // Name of a method on the command line (pog, markov, markov-mixture, likelihood-field) and in
 // tables.
 const char* global_method_name(GlobalMethod method);

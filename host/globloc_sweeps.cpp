@@ -31,9 +31,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr GlobalMethod kMethods[] = {GlobalMethod::pose_grid, GlobalMethod::markov,
-                                     GlobalMethod::markov_mixture, GlobalMethod::likelihood_field};
-constexpr std::size_t kMethodCount = std::size(kMethods);
+constexpr const auto& kMethods = kGlobalMethods;
+constexpr std::size_t kMethodCount = std::size(kGlobalMethods);
 // Seed streams: the true poses (per trial, shared by every sweep point), then the sweeps'.
 constexpr std::uint64_t kPoseStream = 0;
 constexpr std::uint64_t kSweepStream = 1;

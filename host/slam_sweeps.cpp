@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -455,14 +454,13 @@ std::string plot_script(const std::vector<Point>& lambda, const std::vector<Poin
 bool write_plots(const SlamSweepOptions& o, const std::vector<Point>& lambda,
                  const std::vector<Point>& xi, const std::vector<Point>& depth,
                  const std::string& title) {
-  const std::optional<int> probe = run_program(o.gnuplot, {"-e", "set terminal pngcairo"}, true);
-  if (!probe) return false;
-  const bool cairo = *probe == 0;
+  const GnuplotProbe probe = probe_gnuplot(o.gnuplot);
+  if (!probe.found) return false;
   AtomicFile lambda_png(o.out / "slam_lambda.png"), xi_png(o.out / "slam_xi.png"),
       depth_png(o.out / "slam_depth.png");
   return draw_pngs(
       o.gnuplot,
-      plot_script(lambda, xi, depth, title, cairo, o.config.lambda, o.config.xi,
+      plot_script(lambda, xi, depth, title, probe.cairo, o.config.lambda, o.config.xi,
                   lambda_png.temporary_path(), xi_png.temporary_path(), depth_png.temporary_path()),
       o.out / "slam_plots.gp", {&lambda_png, &xi_png, &depth_png});
 }
