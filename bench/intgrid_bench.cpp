@@ -462,7 +462,7 @@ void BM_GlobalLoc_PoseGrid(benchmark::State& state, PoseGridForm form) {
   }
   report_global_loc(state, b);
 }
-BENCHMARK_CAPTURE(BM_GlobalLoc_PoseGrid, dense, &LocalizationMap::add_reading_dense)
+BENCHMARK_CAPTURE(BM_GlobalLoc_PoseGrid, dense, &LocalizationMap::add_reading_dense<std::int32_t>)
     ->RangeMultiplier(10)
     ->Range(10000, 10000000)
     ->Unit(benchmark::kMicrosecond)

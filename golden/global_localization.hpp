@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "golden/grid.hpp"
@@ -68,14 +69,21 @@ std::vector<RangeReading> readings_of(const Scan& scan, int beams, double max_ra
 // quantized to the nearest step of the reading's own S_eps scale (lambda = max(logit(the
 // table's Pmax), 1e-9) / seps_levels) and clamped to [-min(n_top[d], veto_levels), n_top[d]]
 // (n_top[d] the largest positive index of the table, 0 if none). rho = 0 (never a candidate's first
-// hit) holds 0, and rho >= claim[d].size() (past z plus the ISM's window of 8 sigma_eff, or no hit)
-// claims 0.
-struct ReadingClaims {
+// hit) holds 0; claim[d] ends with one 0, past z plus the ISM's window of 8 sigma_eff, which every
+// rho past the table (or no hit) reads.
+//
+// The same claims in double precision (Score = double, log_odds_claims) hold the log-odds the
+// indices round: n lambda before rounding, bounded alike. They are the floating-point form of the
+// pose grid, kept to measure what the integer arithmetic saves.
+template <class Score>
+struct BasicReadingClaims {
   int shift = 0;
   double sigma_eff = 0.0;  // hypot(sigma, pose_res, bin * z), bin = 2 pi / headings (rule 1)
-  std::vector<std::vector<std::int32_t>> claim;  // [direction bin][rho]
-  std::vector<int> n_top;                        // [direction bin]
+  std::vector<std::vector<Score>> claim;  // [direction bin][rho]
+  std::vector<Score> n_top;               // [direction bin]
 };
+using ReadingClaims = BasicReadingClaims<std::int32_t>;
+using LogOddsClaims = BasicReadingClaims<double>;
 
 // The class of a pose cell, from the map cells whose centres fall in it.
 enum class PoseCellClass : std::uint8_t {
@@ -146,9 +154,13 @@ class LocalizationMap {
   // The claims of one reading. Throws std::invalid_argument for a range that is not finite and
   // positive or not below max_range, or a bearing that is not finite.
   ReadingClaims claims(const RangeReading& reading) const;
+  LogOddsClaims log_odds_claims(const RangeReading& reading) const;
   // Dense form: pog[q] += claim[d][first_hit_steps] for every candidate q (heading bin k reading
   // along d = (k + shift) mod headings). pog has pose_cells() elements, laid out as index().
-  void add_reading_dense(const ReadingClaims& claims, std::span<std::int32_t> pog) const;
+  // Allocates nothing. Score is std::int32_t or double.
+  template <class Score>
+  void add_reading_dense(const BasicReadingClaims<Score>& claims,
+                         std::span<std::type_identity_t<Score>> pog) const;
   // Walk form: from every live source along every d, walk back over its run adding claim[d][rho]
   // to the free cells rho steps before it, until the claims end. The same grid as the dense form.
   void add_reading_walk(const ReadingClaims& claims, std::span<std::int32_t> pog) const;
@@ -182,6 +194,8 @@ class LocalizationMap {
   std::vector<double> occupied_distance_;  // per map cell, metres
 
   void build_direction(int d);
+  template <class Score>
+  BasicReadingClaims<Score> make_claims(const RangeReading& reading) const;
 };
 
 // Markov localization over the candidates of a map, the baselines (markov, markov_mixture,

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 namespace {
 
@@ -17,7 +19,7 @@ ProbabilityGrid window_around(const ProbabilityGrid& map, double x, double y, do
   const int y0 = std::max(0, g.cell_y(y - reach) - 1);
   const int x1 = std::min(g.width - 1, g.cell_x(x + reach) + 1);
   const int y1 = std::min(g.height - 1, g.cell_y(y + reach) + 1);
-  if (x1 < x0 || y1 < y0) throw std::invalid_argument("the true pose lies outside the map");
+  if (x1 < x0 || y1 < y0) fail<std::invalid_argument>("the true pose lies outside the map");
   GridGeometry w{x1 - x0 + 1, y1 - y0 + 1, g.resolution, g.origin_x + x0 * g.resolution,
                  g.origin_y + y0 * g.resolution};
   ProbabilityGrid out(w, 0.5);
@@ -36,11 +38,11 @@ GlobalTrialWorld::GlobalTrialWorld(const ProbabilityGrid& map, double occupied_t
       clearance_(clearance) {
   check_geometry(map.geometry);
   if (!(occupied_threshold > 0.0 && occupied_threshold <= 1.0))
-    throw std::invalid_argument("occupied_threshold must be in (0, 1]");
+    fail<std::invalid_argument>("occupied_threshold must be in (0, 1]");
   if (!(free_threshold > 0.0 && free_threshold <= occupied_threshold))
-    throw std::invalid_argument("free_threshold must be in (0, occupied_threshold]");
+    fail<std::invalid_argument>("free_threshold must be in (0, occupied_threshold]");
   if (!(clearance >= 0.0) || !std::isfinite(clearance))
-    throw std::invalid_argument("clearance must be a finite distance >= 0");
+    fail<std::invalid_argument>("clearance must be a finite distance >= 0");
   const Grid<double> distance = clearance_map(map, free_threshold);
   for (std::size_t i = 0; i < distance.cells.size(); ++i) {
     const double p = map.cells[i];
@@ -48,7 +50,7 @@ GlobalTrialWorld::GlobalTrialWorld(const ProbabilityGrid& map, double occupied_t
       cells_.push_back(i);
   }
   if (cells_.empty())
-    throw std::invalid_argument("the map has no free cell " + std::to_string(clearance) +
+    fail<std::invalid_argument>("the map has no free cell " + std::to_string(clearance) +
                                 " m from every non-free cell");
 }
 
@@ -65,7 +67,7 @@ Pose2 GlobalTrialWorld::random_pose(SimRandom& random) const {
 
 Pose2 random_candidate_pose(const LocalizationMap& map, SimRandom& random) {
   if (map.width() < 3 || map.height() < 3)
-    throw std::invalid_argument("the pose grid is smaller than 3 x 3 cells");
+    fail<std::invalid_argument>("the pose grid is smaller than 3 x 3 cells");
   while (true) {
     const int i = 1 + static_cast<int>(random.below(std::uint64_t(map.width() - 2)));
     const int j = 1 + static_cast<int>(random.below(std::uint64_t(map.height() - 2)));
@@ -82,27 +84,27 @@ Pose2 random_candidate_pose(const LocalizationMap& map, SimRandom& random) {
 
 void check_global_trial_conditions(const GlobalTrialConditions& c) {
   if (c.readings == 0 || c.readings > 100000)
-    throw std::invalid_argument("readings must be in 1..100000");
+    fail<std::invalid_argument>("readings must be in 1..100000");
   if (!(c.fov > 0.0 && c.fov <= 2.0 * std::numbers::pi))
-    throw std::invalid_argument("fov must be in (0, 2 pi]");
+    fail<std::invalid_argument>("fov must be in (0, 2 pi]");
   if (!(c.max_range > 0.0) || !std::isfinite(c.max_range))
-    throw std::invalid_argument("max_range must be a positive finite distance");
+    fail<std::invalid_argument>("max_range must be a positive finite distance");
   if (!(c.noise >= 0.0) || !std::isfinite(c.noise))
-    throw std::invalid_argument("noise must be a finite distance >= 0");
+    fail<std::invalid_argument>("noise must be a finite distance >= 0");
   if (!(c.contamination >= 0.0 && c.contamination <= 1.0))
-    throw std::invalid_argument("contamination must be in [0, 1]");
-  if (c.obstacles > 1000000) throw std::invalid_argument("obstacles must be at most 10^6");
+    fail<std::invalid_argument>("contamination must be in [0, 1]");
+  if (c.obstacles > 1000000) fail<std::invalid_argument>("obstacles must be at most 10^6");
   if (c.large_obstacle && (!(*c.large_obstacle >= 0.0) || !std::isfinite(*c.large_obstacle)))
-    throw std::invalid_argument("large_obstacle must be a finite distance >= 0");
+    fail<std::invalid_argument>("large_obstacle must be a finite distance >= 0");
   if (!(c.obstacle_clearance >= 0.0) || !std::isfinite(c.obstacle_clearance))
-    throw std::invalid_argument("obstacle_clearance must be a finite distance >= 0");
+    fail<std::invalid_argument>("obstacle_clearance must be a finite distance >= 0");
 }
 
 GlobalTrial simulate_global_trial(const GlobalTrialWorld& world, const GlobalTrialConditions& c,
                                   const Pose2& truth, std::uint64_t seed) {
   check_global_trial_conditions(c);
   if (!std::isfinite(truth.x) || !std::isfinite(truth.y) || !std::isfinite(truth.theta))
-    throw std::invalid_argument("the true pose must be finite");
+    fail<std::invalid_argument>("the true pose must be finite");
   const ProbabilityGrid& map = world.map();
   ProbabilityGrid sensed =
       window_around(map, truth.x, truth.y, c.max_range + map.geometry.resolution);

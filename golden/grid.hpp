@@ -3,11 +3,15 @@
 // the image rows are flipped).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <vector>
+
+#include "golden/failure.hpp"
 
 namespace intgrid {
 
@@ -38,13 +42,15 @@ struct GridGeometry {
 // cell count fits in memory indices.
 inline void check_geometry(const GridGeometry& g) {
   if (!(g.resolution > 0.0) || !std::isfinite(g.resolution))
-    throw std::invalid_argument("grid resolution must be a positive finite number");
-  if (g.width <= 0 || g.height <= 0) throw std::invalid_argument("grid size must be positive");
+    fail<std::invalid_argument>("grid resolution must be a positive finite number");
+  if (g.width <= 0 || g.height <= 0) fail<std::invalid_argument>("grid size must be positive");
   if (!std::isfinite(g.origin_x) || !std::isfinite(g.origin_y))
-    throw std::invalid_argument("grid origin must be finite");
-  constexpr std::size_t kMaxCells = std::size_t{1} << 32;
-  if (static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height) > kMaxCells)
-    throw std::invalid_argument("grid has more than 2^32 cells");
+    fail<std::invalid_argument>("grid origin must be finite");
+  // 2^32, or what a 32-bit size_t can count.
+  constexpr std::uint64_t kMaxCells =
+      std::min<std::uint64_t>(std::uint64_t{1} << 32, std::numeric_limits<std::size_t>::max());
+  if (static_cast<std::uint64_t>(g.width) * static_cast<std::uint64_t>(g.height) > kMaxCells)
+    fail<std::invalid_argument>("grid has more than 2^32 cells");
 }
 
 template <class T>

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 namespace {
 
@@ -17,7 +19,7 @@ constexpr Log kLogZero = IsmKernelTables::kLogZero;
 constexpr double kLogRange = double(1 << 29);
 
 void require(bool ok, const std::string& message) {
-  if (!ok) throw std::invalid_argument("ISM kernel: " + message);
+  if (!ok) fail<std::invalid_argument>("ISM kernel: " + message);
 }
 
 // The integer arithmetic of the kernel, for the shared ring recursion.
@@ -137,12 +139,12 @@ IsmKernelTables make_ism_kernel(const ConeSensorModel& model, const SectoralGrid
 }
 
 std::uint32_t quantize_reading(const IsmKernelTables& kernel, double z) {
-  if (std::isnan(z)) throw std::invalid_argument("reading z is NaN");
-  if (z < 0.0) throw std::invalid_argument("reading z is negative");
+  if (std::isnan(z)) fail<std::invalid_argument>("reading z is NaN");
+  if (z < 0.0) fail<std::invalid_argument>("reading z is negative");
   const double units =
       std::round(std::ldexp(z / kernel.grid.cell, kernel.format.reading_frac_bits));
   if (!(units < 2147483648.0))
-    throw std::invalid_argument("reading z does not fit the kernel's 31-bit reading");
+    fail<std::invalid_argument>("reading z does not fit the kernel's 31-bit reading");
   return static_cast<std::uint32_t>(units);
 }
 
@@ -182,7 +184,7 @@ void ism_kernel_indices(const IsmKernelTables& kernel, std::uint32_t reading,
                         std::span<std::int16_t> out) {
   const SectoralGrid& grid = kernel.grid;
   if (out.size() != grid.cells())
-    throw std::invalid_argument("ism_kernel_indices: output size differs from rings x bins");
+    fail<std::invalid_argument>("ism_kernel_indices: output size differs from rings x bins");
   const KernelLogArith arith{kernel, reading};
   const auto per_sector = static_cast<std::size_t>(grid.bins_per_sector());
   sectoral_ism_rings(arith, grid.rings, grid.sectors, std::size_t(kernel.classes),

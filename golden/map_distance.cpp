@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 namespace {
 
@@ -79,7 +81,7 @@ ObstacleDistance distance_to_nearest_obstacle(const ProbabilityGrid& built, doub
   check_geometry(built.geometry);
   check_geometry(truth.geometry);
   if (built.cells.size() != built.geometry.size() || truth.cells.size() != truth.geometry.size())
-    throw std::invalid_argument("distance_to_nearest_obstacle: cells do not match the geometry");
+    fail<std::invalid_argument>("distance_to_nearest_obstacle: cells do not match the geometry");
   const GridGeometry& t = truth.geometry;
   std::vector<char> occupied(truth.cells.size());
   bool any = false;
@@ -88,7 +90,7 @@ ObstacleDistance distance_to_nearest_obstacle(const ProbabilityGrid& built, doub
     any = any || occupied[i];
   }
   if (!any)
-    throw std::invalid_argument("distance_to_nearest_obstacle: the true map has no occupied cell");
+    fail<std::invalid_argument>("distance_to_nearest_obstacle: the true map has no occupied cell");
   const std::vector<double> squared = squared_distance_transform(occupied, t.width, t.height);
 
   ObstacleDistance out;

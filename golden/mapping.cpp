@@ -5,11 +5,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 
 GridGeometry geometry_covering(std::span<const Scan> scans, double resolution, double margin) {
   if (!(resolution > 0.0) || !std::isfinite(resolution))
-    throw std::invalid_argument("resolution must be a positive finite number");
+    fail<std::invalid_argument>("resolution must be a positive finite number");
   double x_lo = std::numeric_limits<double>::infinity(), y_lo = x_lo;
   double x_hi = -x_lo, y_hi = -x_lo;
   const auto include = [&](double x, double y) {
@@ -28,7 +30,7 @@ GridGeometry geometry_covering(std::span<const Scan> scans, double resolution, d
       include(sensor.x + z * std::cos(a), sensor.y + z * std::sin(a));
     }
   }
-  if (!any_valid) throw std::invalid_argument("no scan holds a valid reading");
+  if (!any_valid) fail<std::invalid_argument>("no scan holds a valid reading");
   GridGeometry g;
   g.resolution = resolution;
   g.origin_x = std::floor((x_lo - margin) / resolution) * resolution;
@@ -36,7 +38,7 @@ GridGeometry geometry_covering(std::span<const Scan> scans, double resolution, d
   const double width = std::ceil((x_hi + margin - g.origin_x) / resolution);
   const double height = std::ceil((y_hi + margin - g.origin_y) / resolution);
   if (width * height > static_cast<double>(std::size_t{1} << 32) || width > 1e9 || height > 1e9)
-    throw std::invalid_argument("the grid covering the log would have more than 2^32 cells");
+    fail<std::invalid_argument>("the grid covering the log would have more than 2^32 cells");
   g.width = static_cast<int>(width);
   g.height = static_cast<int>(height);
   check_geometry(g);

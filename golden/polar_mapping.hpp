@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "golden/failure.hpp"
 #include "golden/footprint.hpp"
 #include "golden/grid.hpp"
 #include "golden/sectoral_ism.hpp"
@@ -40,7 +41,7 @@ template <class T>
 Grid<T> map_polar(const GridGeometry& world, const Pose2& sensor, const SectoralGrid& polar,
                   std::span<const T> values, T outside) {
   if (values.size() != polar.cells())
-    throw std::invalid_argument("map_polar: values differ in size from the polar grid");
+    fail<std::invalid_argument>("map_polar: values differ in size from the polar grid");
   Grid<T> grid(world, outside);
   for_each_polar_cell(world, sensor, polar, [&](std::size_t index, int ring, int bin) {
     grid.cells[index] =
@@ -53,15 +54,14 @@ Grid<T> map_polar(const GridGeometry& world, const Pose2& sensor, const Sectoral
 // Bayesian fusion of two grids of one geometry, cell by cell: F(p, q) for probabilities,
 // saturating addition for S_eps indices.
 inline ProbabilityGrid fuse_grids(const ProbabilityGrid& a, const ProbabilityGrid& b) {
-  if (a.cells.size() != b.cells.size()) throw std::invalid_argument("fuse_grids: sizes differ");
+  if (a.cells.size() != b.cells.size()) fail<std::invalid_argument>("fuse_grids: sizes differ");
   ProbabilityGrid out = a;
-  for (std::size_t i = 0; i < out.cells.size(); ++i)
-    out.cells[i] = fuse_probabilities(a.cells[i], b.cells[i]);
+  fuse_probabilities(a.cells, b.cells, out.cells);
   return out;
 }
 template <class Index>
 Grid<Index> fuse_grids(const Grid<Index>& a, const Grid<Index>& b, int max_index) {
-  if (a.cells.size() != b.cells.size()) throw std::invalid_argument("fuse_grids: sizes differ");
+  if (a.cells.size() != b.cells.size()) fail<std::invalid_argument>("fuse_grids: sizes differ");
   Grid<Index> out = a;
   fuse_indices<Index>(a.cells, b.cells, out.cells, max_index);
   return out;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "golden/failure.hpp"
 #include "golden/narrow_ism.hpp"
 
 namespace intgrid {
@@ -45,8 +46,8 @@ WorstCasePmax narrow_pmax_worst_case(double cell, double sigma) {
 
 double smallest_cell_for_pmax(double sigma, double pmax, bool worst_case) {
   if (!(sigma > 0.0) || !std::isfinite(sigma))
-    throw std::invalid_argument("sigma must be a positive finite number");
-  if (!(pmax > 0.5 && pmax < 1.0)) throw std::invalid_argument("Pmax must lie in (1/2, 1)");
+    fail<std::invalid_argument>("sigma must be a positive finite number");
+  if (!(pmax > 0.5 && pmax < 1.0)) fail<std::invalid_argument>("Pmax must lie in (1/2, 1)");
   const auto reached = [&](double cell) {
     return (worst_case ? narrow_pmax_worst_case(cell, sigma).pmax : narrow_pmax(cell, sigma)) >=
            pmax;
@@ -55,7 +56,7 @@ double smallest_cell_for_pmax(double sigma, double pmax, bool worst_case) {
   double lo = 1e-3 * sigma, hi = 50.0 * sigma;
   if (reached(lo)) return lo;
   if (!reached(hi))
-    throw std::invalid_argument(worst_case && pmax > 2.0 / 3.0
+    fail<std::invalid_argument>(worst_case && pmax > 2.0 / 3.0
                                     ? "no cell size reaches a worst-case Pmax above 2/3: a "
                                       "reading on a cell boundary splits between two cells"
                                     : "Pmax is too close to 1 to be reached");

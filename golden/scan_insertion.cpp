@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "golden/failure.hpp"
 #include "golden/narrow_ism.hpp"
 
 namespace intgrid {
@@ -43,11 +44,11 @@ IndexScanInserter<Index>::IndexScanInserter(const GaussianBeamModel& model, doub
     : model_(model), cell_(cell), codec_(codec), veto_(veto), z_step_(z_step) {
   check_model(model);
   if (!(cell > 0.0) || !std::isfinite(cell))
-    throw std::invalid_argument("cell size must be positive");
+    fail<std::invalid_argument>("cell size must be positive");
   if (!(z_step > 0.0) || !std::isfinite(z_step))
-    throw std::invalid_argument("z step must be positive");
+    fail<std::invalid_argument>("z step must be positive");
   if (codec.max_index() > std::numeric_limits<Index>::max())
-    throw std::invalid_argument("the S_eps index width does not fit the grid's cell type");
+    fail<std::invalid_argument>("the S_eps index width does not fit the grid's cell type");
 }
 
 template <class Index>
@@ -60,7 +61,7 @@ const std::vector<Index>& IndexScanInserter<Index>::beam_indices(double z) {
   std::vector<double> ism;
   for (std::size_t cells = ism_cells_for_reading(model_, zq, cell_);; cells *= 2) {
     if (cells > (std::size_t{1} << 26))
-      throw std::invalid_argument("eps is too small: the ISM never quantizes to index 0");
+      fail<std::invalid_argument>("eps is too small: the ISM never quantizes to index 0");
     ism.resize(cells);
     narrow_ism(model_, zq, cell_, ism);
     if (codec_.quantize_conservative(ism.back()) == 0) break;
@@ -84,7 +85,7 @@ const std::vector<Index>& IndexScanInserter<Index>::beam_indices(double z) {
 template <class Index>
 void IndexScanInserter<Index>::insert(Grid<Index>& grid, const Scan& scan, InsertionStats& stats) {
   if (grid.geometry.resolution != cell_)
-    throw std::invalid_argument("the grid's resolution differs from the inserter's cell size");
+    fail<std::invalid_argument>("the grid's resolution differs from the inserter's cell size");
   const Pose2 pose = scan.sensor_pose();
   const int max_index = codec_.max_index();
   for_each_valid_beam(scan, stats, [&](double z, Vec2 from, Vec2 to) {

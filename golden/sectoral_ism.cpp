@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 namespace {
 
@@ -58,27 +60,29 @@ double SectoralGrid::sector_theta(int sector) const {
 }
 
 void check_sectoral_grid(const SectoralGrid& g) {
-  const auto fail = [](const std::string& message) { throw std::invalid_argument(message); };
+  const auto invalid = [](const std::string& message) { fail<std::invalid_argument>(message); };
   if (!(g.fov > 0.0 && g.fov < std::numbers::pi))
-    fail("FOV must lie strictly between 0 and 180 degrees");
-  if (!(g.cell > 0.0) || !std::isfinite(g.cell)) fail("cell size must be a positive finite number");
-  if (g.rings < 1) fail("rings (R) must be at least 1, got " + std::to_string(g.rings));
-  if (g.bins < 1) fail("bins (A) must be at least 1, got " + std::to_string(g.bins));
-  if (g.sectors < 1) fail("sectors (Ns) must be at least 1, got " + std::to_string(g.sectors));
+    invalid("FOV must lie strictly between 0 and 180 degrees");
+  if (!(g.cell > 0.0) || !std::isfinite(g.cell))
+    invalid("cell size must be a positive finite number");
+  if (g.rings < 1) invalid("rings (R) must be at least 1, got " + std::to_string(g.rings));
+  if (g.bins < 1) invalid("bins (A) must be at least 1, got " + std::to_string(g.bins));
+  if (g.sectors < 1) invalid("sectors (Ns) must be at least 1, got " + std::to_string(g.sectors));
   if (g.bins > kMaxBins)
-    fail("bins (A = " + std::to_string(g.bins) + ") exceed " + std::to_string(kMaxBins) +
-         ": the prior 2^-A of an empty ring would leave double precision");
+    invalid("bins (A = " + std::to_string(g.bins) + ") exceed " + std::to_string(kMaxBins) +
+            ": the prior 2^-A of an empty ring would leave double precision");
   if (g.sectors > g.bins)
-    fail("sectors (Ns = " + std::to_string(g.sectors) +
-         ") exceed bins (A = " + std::to_string(g.bins) + ")");
+    invalid("sectors (Ns = " + std::to_string(g.sectors) +
+            ") exceed bins (A = " + std::to_string(g.bins) + ")");
   if (g.bins % g.sectors != 0)
-    fail("bins (A = " + std::to_string(g.bins) + ") must be a multiple of sectors (Ns = " +
-         std::to_string(g.sectors) + "), so that sectors are equal and symmetric about the axis");
+    invalid("bins (A = " + std::to_string(g.bins) +
+            ") must be a multiple of sectors (Ns = " + std::to_string(g.sectors) +
+            "), so that sectors are equal and symmetric about the axis");
   if (g.sectors > kMaxSectors)
-    fail("sectors (Ns = " + std::to_string(g.sectors) + ") exceed " + std::to_string(kMaxSectors) +
-         ", the largest pattern-class table this model builds");
+    invalid("sectors (Ns = " + std::to_string(g.sectors) + ") exceed " +
+            std::to_string(kMaxSectors) + ", the largest pattern-class table this model builds");
   if (static_cast<long long>(g.rings) * g.bins > kMaxPolarCells)
-    fail("rings x bins exceeds " + std::to_string(kMaxPolarCells) + " polar cells");
+    invalid("rings x bins exceeds " + std::to_string(kMaxPolarCells) + " polar cells");
 }
 
 PatternClasses pattern_classes(const SectoralGrid& grid) {
@@ -155,7 +159,7 @@ PatternClasses pattern_classes(const SectoralGrid& grid) {
 void sectoral_ism(const ConeSensorModel& model, const SectoralGrid& grid, double z,
                   std::span<double> out) {
   if (out.size() != grid.cells())
-    throw std::invalid_argument("sectoral_ism: output size differs from rings x bins");
+    fail<std::invalid_argument>("sectoral_ism: output size differs from rings x bins");
   const PatternClasses classes = pattern_classes(grid);
   const int reference_ring =
       static_cast<int>(std::clamp(std::round(z / grid.cell), 1.0, double(grid.rings)));

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 
 // log of the normalized Gaussian density of an error, for standard deviation sigma.
@@ -34,9 +36,9 @@ struct GaussianBeamModel {
 // Throws std::invalid_argument naming the offending parameter.
 inline void check_model(const GaussianBeamModel& m) {
   if (!(m.sigma0 > 0.0) || !std::isfinite(m.sigma0))
-    throw std::invalid_argument("sigma must be a positive finite number");
+    fail<std::invalid_argument>("sigma must be a positive finite number");
   if (!(m.k_d >= 0.0) || !std::isfinite(m.k_d))
-    throw std::invalid_argument("k_d must be a non-negative finite number");
+    fail<std::invalid_argument>("k_d must be a non-negative finite number");
 }
 
 // Large-FOV nearest-target model (thesis figure 2.7, ALGORITHMS.md 3): a normalized
@@ -64,9 +66,9 @@ struct ConeSensorModel {
 inline void check_model(const ConeSensorModel& m) {
   check_model(GaussianBeamModel{m.sigma0, m.k_d});
   if (!(m.k_theta >= 0.0) || !std::isfinite(m.k_theta))
-    throw std::invalid_argument("k_theta must be a non-negative finite number");
+    fail<std::invalid_argument>("k_theta must be a non-negative finite number");
   if (!(m.k_size >= 0.0) || !std::isfinite(m.k_size))
-    throw std::invalid_argument("k_size must be a non-negative finite number");
+    fail<std::invalid_argument>("k_size must be a non-negative finite number");
 }
 
 }  // namespace intgrid

@@ -2,31 +2,33 @@
 
 #include <string>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 
 int max_index_for_bits(int bits) {
   if (bits < 2 || bits > 16)
-    throw std::invalid_argument("index width must be 2..16 bits, got " + std::to_string(bits));
+    fail<std::invalid_argument>("index width must be 2..16 bits, got " + std::to_string(bits));
   return (1 << (bits - 1)) - 1;
 }
 
 SepsCodec::SepsCodec(int bits, double eps)
     : bits_(bits), eps_(eps), lambda_(0.0), max_index_(max_index_for_bits(bits)) {
   if (!(eps > 0.0 && eps < 0.5))
-    throw std::invalid_argument("eps must lie in (0, 1/2), got " + std::to_string(eps));
+    fail<std::invalid_argument>("eps must lie in (0, 1/2), got " + std::to_string(eps));
   lambda_ = logit(0.5 + eps);
   for (int n = 0; n <= max_index_; ++n) empty_thresholds_.push_back(probability(-n));
 }
 
 SepsCodec SepsCodec::for_confidence(int bits, double p_most) {
   if (!(p_most > 0.5 && p_most < 1.0))
-    throw std::invalid_argument("the most confident probability must lie in (1/2, 1)");
+    fail<std::invalid_argument>("the most confident probability must lie in (1/2, 1)");
   return SepsCodec(bits, logistic(logit(p_most) / max_index_for_bits(bits)) - 0.5);
 }
 
 SepsCodec SepsCodec::for_levels(int bits, double pmax, int levels) {
-  if (!(pmax > 0.5 && pmax < 1.0)) throw std::invalid_argument("Pmax must lie in (1/2, 1)");
-  if (levels < 1) throw std::invalid_argument("the number of levels must be at least 1");
+  if (!(pmax > 0.5 && pmax < 1.0)) fail<std::invalid_argument>("Pmax must lie in (1/2, 1)");
+  if (levels < 1) fail<std::invalid_argument>("the number of levels must be at least 1");
   return SepsCodec(bits, logistic(logit(pmax) / levels) - 0.5);
 }
 

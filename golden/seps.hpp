@@ -40,6 +40,12 @@ inline double fuse_probabilities(double p, double q) {
   return den > 0.0 ? num / den : 0.5;
 }
 
+// Cell-wise Bayesian fusion of two probability grids into out (which may alias a).
+inline void fuse_probabilities(std::span<const double> a, std::span<const double> b,
+                               std::span<double> out) {
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = fuse_probabilities(a[i], b[i]);
+}
+
 // The largest index of a `bits`-bit S_eps grid; throws unless 2 <= bits <= 16.
 int max_index_for_bits(int bits);
 

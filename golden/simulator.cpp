@@ -10,6 +10,8 @@
 #include <string>
 #include <utility>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 namespace {
 
@@ -19,8 +21,8 @@ constexpr double kSqrt2 = std::numbers::sqrt2;
 
 // ---- Validation helpers: one message naming the field.
 
-[[noreturn]] void fail(const std::string& field, const std::string& message) {
-  throw std::invalid_argument(field + ": " + message);
+[[noreturn]] void invalid_field(const std::string& field, const std::string& message) {
+  fail<std::invalid_argument>(field + ": " + message);
 }
 
 std::string number(double v) {
@@ -32,25 +34,26 @@ std::string number(double v) {
 
 void require_positive(double v, const char* field) {
   if (!(v > 0.0) || !std::isfinite(v))
-    fail(field, "must be a positive finite number, got " + number(v));
+    invalid_field(field, "must be a positive finite number, got " + number(v));
 }
 
 void require_non_negative(double v, const char* field) {
   if (!(v >= 0.0) || !std::isfinite(v))
-    fail(field, "must be a finite number >= 0, got " + number(v));
+    invalid_field(field, "must be a finite number >= 0, got " + number(v));
 }
 
 void require_probability(double v, const char* field) {
-  if (!(v >= 0.0 && v <= 1.0)) fail(field, "must be a probability in [0, 1], got " + number(v));
+  if (!(v >= 0.0 && v <= 1.0))
+    invalid_field(field, "must be a probability in [0, 1], got " + number(v));
 }
 
 void require_finite(double v, const char* field) {
-  if (!std::isfinite(v)) fail(field, "must be finite, got " + number(v));
+  if (!std::isfinite(v)) invalid_field(field, "must be finite, got " + number(v));
 }
 
 void require_finite_pose(const Pose2& p, const std::string& field) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta))
-    fail(field, "must have finite x, y and theta");
+    invalid_field(field, "must have finite x, y and theta");
 }
 
 std::uint64_t rotl(std::uint64_t x, int k) {
@@ -62,7 +65,7 @@ std::uint64_t rotl(std::uint64_t x, int k) {
 void check_world(const ProbabilityGrid& world) {
   check_geometry(world.geometry);
   if (world.cells.size() != world.geometry.size())
-    throw std::invalid_argument("world: cell count does not match its geometry");
+    fail<std::invalid_argument>("world: cell count does not match its geometry");
 }
 
 // The cell range [lo, hi] whose squares overlap the open interval (a, b) along one axis
@@ -164,7 +167,7 @@ double SimRandom::uniform_open() {
 }
 
 std::uint64_t SimRandom::below(std::uint64_t n) {
-  if (n == 0) throw std::invalid_argument("SimRandom::below: n must be positive");
+  if (n == 0) fail<std::invalid_argument>("SimRandom::below: n must be positive");
   const std::uint64_t threshold = (0 - n) % n;  // 2^64 mod n
   for (;;) {
     const std::uint64_t r = next_u64();
@@ -245,25 +248,27 @@ void check_floorplan_config(const FloorplanConfig& c) {
   require_positive(c.corridor, "floorplan.corridor");
   require_positive(c.door, "floorplan.door");
   require_positive(c.room_length, "floorplan.room_length");
-  if (c.furniture > 1000) fail("floorplan.furniture", "must be at most 1000");
+  if (c.furniture > 1000) invalid_field("floorplan.furniture", "must be at most 1000");
   const double cells = std::ceil(c.width / c.cell) * std::ceil(c.height / c.cell);
   if (!(cells <= 1e8))
-    fail("floorplan.cell",
-         "gives more than 10^8 cells for " + number(c.width) + " x " + number(c.height) + " m");
-  if (c.door < 3.0 * c.cell) fail("floorplan.door", "must be at least 3 cells wide");
-  if (c.corridor < 4.0 * c.cell) fail("floorplan.corridor", "must be at least 4 cells wide");
-  if (c.wall >= c.room_depth) fail("floorplan.wall", "must be thinner than room_depth");
+    invalid_field("floorplan.cell", "gives more than 10^8 cells for " + number(c.width) + " x " +
+                                        number(c.height) + " m");
+  if (c.door < 3.0 * c.cell) invalid_field("floorplan.door", "must be at least 3 cells wide");
+  if (c.corridor < 4.0 * c.cell)
+    invalid_field("floorplan.corridor", "must be at least 4 cells wide");
+  if (c.wall >= c.room_depth) invalid_field("floorplan.wall", "must be thinner than room_depth");
   const double inner = 2.0 * (c.room_depth + 3.0 * c.wall + c.corridor) + 1.0;
   if (c.width < inner || c.height < inner)
-    fail("floorplan.width",
-         "the floor must be at least 2 (room_depth + 3 wall + corridor) + 1 = " + number(inner) +
-             " m in width and height, for rooms, the corridor and an inner block of 1 m");
+    invalid_field(
+        "floorplan.width",
+        "the floor must be at least 2 (room_depth + 3 wall + corridor) + 1 = " + number(inner) +
+            " m in width and height, for rooms, the corridor and an inner block of 1 m");
   const double need = c.wall + c.door + 2.0 * kDoorMargin;
   if (0.75 * c.room_length < need)
-    fail("floorplan.room_length",
-         "must be at least (wall + door + 0.3) / 0.75 = " + number(need / 0.75) + " m");
+    invalid_field("floorplan.room_length",
+                  "must be at least (wall + door + 0.3) / 0.75 = " + number(need / 0.75) + " m");
   if (c.room_depth - c.wall < c.door + 2.0 * kDoorMargin)
-    fail("floorplan.room_depth", "too shallow for a door");
+    invalid_field("floorplan.room_depth", "too shallow for a door");
 }
 
 Floorplan make_floorplan(const FloorplanConfig& c, std::uint64_t seed) {
@@ -415,15 +420,16 @@ ProbabilityGrid procedural_floorplan(const FloorplanConfig& c, std::uint64_t see
 // Trajectory
 
 void check_trajectory_config(const TrajectoryConfig& c) {
-  if (c.scans == 0) fail("trajectory.scans", "must be at least 1");
-  if (c.scans > 10'000'000) fail("trajectory.scans", "must be at most 10^7");
+  if (c.scans == 0) invalid_field("trajectory.scans", "must be at least 1");
+  if (c.scans > 10'000'000) invalid_field("trajectory.scans", "must be at most 10^7");
   require_positive(c.scan_period, "trajectory.scan_period");
   require_positive(c.speed, "trajectory.speed");
   require_positive(c.turn_rate, "trajectory.turn_rate");
   require_non_negative(c.robot_radius, "trajectory.robot_radius");
   require_non_negative(c.min_leg, "trajectory.min_leg");
   if (!(c.free_threshold > 0.0 && c.free_threshold <= 1.0))
-    fail("trajectory.free_threshold", "must be in (0, 1], got " + number(c.free_threshold));
+    invalid_field("trajectory.free_threshold",
+                  "must be in (0, 1], got " + number(c.free_threshold));
 }
 
 namespace {
@@ -516,12 +522,12 @@ std::vector<Pose2> follow_route(const std::vector<Point2>& route, bool closed,
                                 const TrajectoryConfig& c) {
   check_trajectory_config(c);
   for (const Point2& p : route)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) fail("route", "points must be finite");
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) invalid_field("route", "points must be finite");
   std::size_t second = 1;
   while (second < route.size() && route[second].x == route[0].x && route[second].y == route[0].y)
     ++second;
   if (route.empty() || second == route.size())
-    fail("route", "must hold at least two distinct points");
+    invalid_field("route", "must hold at least two distinct points");
   std::vector<Pose2> poses;
   poses.reserve(c.scans);
   RouteSampler sampler(c, poses);
@@ -647,7 +653,7 @@ class FreeSpace {
         }
       });
     }
-    if (!std::isfinite(dist[to])) throw std::logic_error("shortest_path: cells not connected");
+    if (!std::isfinite(dist[to])) fail<std::logic_error>("shortest_path: cells not connected");
     std::vector<std::size_t> path;
     for (std::size_t i = to; i != from; i = previous[i]) path.push_back(i);
     path.push_back(from);
@@ -717,7 +723,7 @@ std::vector<Pose2> random_trajectory(const ProbabilityGrid& world, const Traject
   const FreeSpace space(world, c);
   const std::vector<std::size_t> region = space.largest_region();
   if (region.size() < 2)
-    throw std::invalid_argument("world: fewer than two free cells (P < " +
+    fail<std::invalid_argument>("world: fewer than two free cells (P < " +
                                 number(c.free_threshold) + ") with " + number(c.robot_radius) +
                                 " m clearance for the robot");
   SimRandom random(seed);
@@ -827,18 +833,19 @@ SensorConfig cone_ring_sensor(std::size_t cones, double cone_fov, double max_ran
 }
 
 void check_sensor_config(const SensorConfig& c) {
-  if (c.beams == 0) fail("sensor.beams", "must be at least 1");
-  if (c.beams > 100000) fail("sensor.beams", "must be at most 100000");
+  if (c.beams == 0) invalid_field("sensor.beams", "must be at least 1");
+  if (c.beams > 100000) invalid_field("sensor.beams", "must be at most 100000");
   require_finite(c.angle0, "sensor.angle0");
   require_finite(c.dangle, "sensor.dangle");
   require_positive(c.max_range, "sensor.max_range");
   require_finite_pose(c.mount, "sensor.mount");
   if (!(c.occupied_threshold > 0.0 && c.occupied_threshold <= 1.0))
-    fail("sensor.occupied_threshold", "must be in (0, 1], got " + number(c.occupied_threshold));
+    invalid_field("sensor.occupied_threshold",
+                  "must be in (0, 1], got " + number(c.occupied_threshold));
   if (c.kind == SensorKind::cone) {
     if (!(c.cone_fov > 0.0 && c.cone_fov < kPi))
-      fail("sensor.cone_fov", "must be in (0, pi) rad, got " + number(c.cone_fov));
-    if (c.rays_per_cone > 100000) fail("sensor.rays_per_cone", "must be at most 100000");
+      invalid_field("sensor.cone_fov", "must be in (0, pi) rad, got " + number(c.cone_fov));
+    if (c.rays_per_cone > 100000) invalid_field("sensor.rays_per_cone", "must be at most 100000");
   }
 }
 
@@ -846,7 +853,7 @@ double ray_cast(const ProbabilityGrid& world, double x, double y, double angle, 
                 double occupied_threshold) {
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(angle) || !(max_range >= 0.0) ||
       !std::isfinite(max_range))
-    throw std::invalid_argument("ray_cast: the start, angle and max_range must be finite");
+    fail<std::invalid_argument>("ray_cast: the start, angle and max_range must be finite");
   const GridGeometry& g = world.geometry;
   const double res = g.resolution;
   const double dx = std::cos(angle), dy = std::sin(angle);
@@ -991,11 +998,11 @@ Scan simulate_scan(const ProbabilityGrid& world, const SensorConfig& sensor,
 // Unmodelled obstacles
 
 void check_obstacle_config(const ObstacleConfig& c) {
-  if (c.count > 1'000'000) fail("obstacles.count", "must be at most 10^6");
+  if (c.count > 1'000'000) invalid_field("obstacles.count", "must be at most 10^6");
   require_positive(c.min_diameter, "obstacles.min_diameter");
   require_positive(c.max_diameter, "obstacles.max_diameter");
   if (c.min_diameter > c.max_diameter)
-    fail("obstacles.min_diameter", "must not exceed max_diameter");
+    invalid_field("obstacles.min_diameter", "must not exceed max_diameter");
   require_non_negative(c.clearance, "obstacles.clearance");
   if (c.large_distance) {
     require_non_negative(*c.large_distance, "obstacles.large_distance");
@@ -1014,7 +1021,8 @@ std::vector<Disc> place_obstacles(const ProbabilityGrid& world, const std::vecto
     std::vector<std::size_t> free_cells;
     for (std::size_t i = 0; i < g.size(); ++i)
       if (is_free(world.cells[i], free_threshold)) free_cells.push_back(i);
-    if (free_cells.empty()) fail("obstacles.count", "the world has no free cell to put them in");
+    if (free_cells.empty())
+      invalid_field("obstacles.count", "the world has no free cell to put them in");
     const double half_diagonal = 0.5 * kSqrt2 * g.resolution;
     for (std::size_t k = 0; k < c.count; ++k) {
       bool placed = false;
@@ -1043,13 +1051,14 @@ std::vector<Disc> place_obstacles(const ProbabilityGrid& world, const std::vecto
         placed = true;
       }
       if (!placed)
-        fail("obstacles.count", "only " + std::to_string(discs.size()) + " of " +
-                                    std::to_string(c.count) +
-                                    " obstacles fit in free space away from the trajectory");
+        invalid_field("obstacles.count",
+                      "only " + std::to_string(discs.size()) + " of " + std::to_string(c.count) +
+                          " obstacles fit in free space away from the trajectory");
     }
   }
   if (c.large_distance) {
-    if (truth.empty()) fail("obstacles.large_distance", "needs a true pose to measure from");
+    if (truth.empty())
+      invalid_field("obstacles.large_distance", "needs a true pose to measure from");
     const Pose2& p = truth.front();
     const double r = 0.5 * c.large_diameter;
     const double reach = *c.large_distance + r;
@@ -1073,14 +1082,14 @@ void check_simulation_config(const SimulationConfig& c) {
   check_range_noise(c.noise);
   check_obstacle_config(c.obstacles);
   require_finite(c.start_time, "start_time");
-  if (c.true_poses.size() > 10'000'000) fail("true_poses", "must hold at most 10^7 poses");
+  if (c.true_poses.size() > 10'000'000) invalid_field("true_poses", "must hold at most 10^7 poses");
   for (std::size_t i = 0; i < c.true_poses.size(); ++i)
     require_finite_pose(c.true_poses[i], "true_poses[" + std::to_string(i) + "]");
   for (const Point2& p : c.route)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) fail("route", "points must be finite");
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) invalid_field("route", "points must be finite");
   if (c.trajectory.free_threshold > c.sensor.occupied_threshold)
-    fail("trajectory.free_threshold",
-         "must not exceed sensor.occupied_threshold (free cells would stop rays)");
+    invalid_field("trajectory.free_threshold",
+                  "must not exceed sensor.occupied_threshold (free cells would stop rays)");
 }
 
 Simulation simulate(const ProbabilityGrid& world, const SimulationConfig& c, std::uint64_t seed) {

@@ -17,13 +17,12 @@
 #include <vector>
 
 #include "golden/grid.hpp"
+#include "golden/ray_insertion.hpp"
 #include "golden/seps.hpp"
 #include "golden/types.hpp"
 #include "golden/ugamma.hpp"
 
 namespace intgrid {
-
-inline constexpr std::int32_t kAngleUnitsPerTurn = 65536;
 
 struct SlamConfig {
   double cell = 0.1;               // map cell and pose-grid step (m), a whole number of millimetres
@@ -94,14 +93,6 @@ struct SlamPose {
   std::int64_t theta = 0;
 };
 
-// The narrow ISM of every reading, quantized to S_eps: for a reading rounded to z_step_mm,
-// the indices of line-of-sight cells 1..n.
-struct NarrowIsmTable {
-  std::int32_t z_step_mm = 1;
-  std::vector<std::uint32_t> begin;  // per z bin, into indices; begin.size() = bins + 1
-  std::vector<std::int8_t> indices;
-};
-
 // Everything the per-scan path needs that takes floating point to build.
 struct SlamSetup {
   SlamConfig config;
@@ -115,7 +106,7 @@ struct SlamSetup {
   std::int32_t max_range_mm = 0;
   int max_seps_index = 0;
   std::vector<std::int32_t> sin_q16;  // sin(2 pi a / 2^16) * 2^16, a = 0..2^16 - 1
-  NarrowIsmTable ism;
+  NarrowIsmTable ism;                 // the map's, quantized to S_eps
   // Motion spread, as fixed-point factors: sigma = base + (factor * magnitude) >> 16.
   std::int32_t motion_xy0_mm = 0;
   std::int64_t motion_xy_per_mm_q16 = 0;
@@ -166,14 +157,7 @@ class GridSlam {
     std::int32_t z_mm;
   };
 
-  std::int32_t sin_units(std::int32_t a) const { return setup_.sin_q16[a & 0xFFFF]; }
-  std::int32_t cos_units(std::int32_t a) const { return setup_.sin_q16[(a + 16384) & 0xFFFF]; }
-  // (x, y) turned by the angle a, in the units of x and y.
-  std::pair<std::int64_t, std::int64_t> rotate(std::int32_t a, std::int64_t x,
-                                               std::int64_t y) const {
-    const std::int64_t c = cos_units(a), s = sin_units(a);
-    return {(c * x - s * y) >> 16, (s * x + c * y) >> 16};
-  }
+  IntegerRays rays() const { return {setup_.sin_q16, setup_.cell_mm}; }
   std::int32_t heading_unit() const { return kAngleUnitsPerTurn / setup_.config.headings; }
   // The heading of slice k, wrapped to one turn.
   std::int32_t slice_angle(int k) const {
@@ -184,9 +168,6 @@ class GridSlam {
   std::int64_t map_index(int cx, int cy) const;
   void check_window_inside_map() const;
 
-  template <class Visit>
-  void walk_ray(std::int64_t px, std::int64_t py, std::int32_t angle, std::int64_t limit_mm,
-                Visit&& visit) const;
   void motion_update(const SlamScan& scan);
   void localize(const SlamScan& scan);
   void map_scan(const SlamScan& scan);
@@ -205,10 +186,13 @@ class GridSlam {
   std::int64_t fx_ = 0, fy_ = 0, theta0_ = 0;
   SlamEstimate estimate_;
   std::size_t scans_ = 0, localizations_ = 0, mappings_ = 0, skipped_ = 0;
-  // Scratch of the localization and mapping events.
+  // Scratch of the events, sized by the constructor for the largest scan the setup allows: the
+  // motion and localization events allocate nothing.
+  std::vector<P> kernel_x_, kernel_y_, kernel_t_;
+  std::vector<std::uint32_t> heading_rays_;  // per heading, into scan_rays_
   std::vector<std::int32_t> ray_offsets_;
   std::vector<P> ray_likelihoods_;
-  std::vector<Ray> rays_;
+  std::vector<Ray> scan_rays_;
   std::vector<std::int16_t> scan_image_;
   std::vector<std::int32_t> touched_, slot_, mix_cells_;
   std::vector<P> mix_occupied_, mix_empty_, mix_weight_;

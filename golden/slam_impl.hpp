@@ -10,16 +10,14 @@
 #include <type_traits>
 #include <utility>
 
+#include "golden/failure.hpp"
 #include "golden/slam.hpp"
 #include "golden/slam_probabilities.hpp"
 
 namespace intgrid {
 namespace slam_detail {
 
-constexpr std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  const std::int64_t q = a / b;
-  return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
-}
+using ray_detail::floor_div;
 
 constexpr std::int64_t round_div(std::int64_t a, std::int64_t b) {
   return floor_div(2 * a + b, 2 * b);
@@ -91,45 +89,15 @@ void GridSlam<Pr>::check_window_inside_map() const {
   const std::int64_t y0 = oy_ + setup_.origin_cell_y - reach,
                      y1 = oy_ + n_ + setup_.origin_cell_y + reach;
   if (x0 < 0 || y0 < 0 || x1 >= map_.geometry.width || y1 >= map_.geometry.height)
-    throw std::runtime_error("SLAM: the pose window at cell (" + std::to_string(ox_ + n_ / 2) +
+    fail<std::runtime_error>("SLAM: the pose window at cell (" + std::to_string(ox_ + n_ / 2) +
                              ", " + std::to_string(oy_ + n_ / 2) +
                              ") reached the edge of the map; raise the map margin");
-}
-
-// Visits every cell the ray crosses from (px, py) (mm from the centre of the pose's cell) in
-// direction `angle`, as visit(cell dx, cell dy, d) with d the distance in mm along the ray of
-// the cell centre's projection, until d passes limit_mm. Crossings are decided by exact
-// integer comparisons of the distances to the next cell boundaries (Amanatides-Woo).
-template <class Pr>
-template <class Visit>
-void GridSlam<Pr>::walk_ray(std::int64_t px, std::int64_t py, std::int32_t angle,
-                            std::int64_t limit_mm, Visit&& visit) const {
-  using slam_detail::floor_div;
-  const std::int64_t c = setup_.cell_mm, c2 = 2 * c;  // doubled millimetres
-  const std::int64_t x = 2 * px + c, y = 2 * py + c;  // from the cell's lower-left corner
-  std::int64_t ix = floor_div(x, c2), iy = floor_div(y, c2);
-  const std::int64_t cs = cos_units(angle), sn = sin_units(angle);
-  const std::int64_t step_x = cs > 0 ? 1 : -1, step_y = sn > 0 ? 1 : -1;
-  const std::int64_t acs = cs < 0 ? -cs : cs, asn = sn < 0 ? -sn : sn;
-  for (;;) {
-    const std::int64_t d = ((ix * c2 + c - x) * cs + (iy * c2 + c - y) * sn) >> 17;
-    if (d > limit_mm) return;
-    visit(static_cast<int>(ix), static_cast<int>(iy), d);
-    // Distances along each axis to the next boundary; the ray meets first the one with the
-    // smaller bx / |cos| versus by / |sin|.
-    const std::int64_t bx = step_x > 0 ? (ix + 1) * c2 - x : x - ix * c2;
-    const std::int64_t by = step_y > 0 ? (iy + 1) * c2 - y : y - iy * c2;
-    if (asn == 0 || (acs != 0 && bx * asn < by * acs))
-      ix += step_x;
-    else
-      iy += step_y;
-  }
 }
 
 template <class Pr>
 void GridSlam<Pr>::process(const SlamScan& scan) {
   if (scan.range_mm.size() != setup_.sensor.bearing.size())
-    throw std::invalid_argument("SLAM: a scan has " + std::to_string(scan.range_mm.size()) +
+    fail<std::invalid_argument>("SLAM: a scan has " + std::to_string(scan.range_mm.size()) +
                                 " ranges, the sensor " +
                                 std::to_string(setup_.sensor.bearing.size()));
   if (scans_ > 0) motion_update(scan);
@@ -157,7 +125,7 @@ template <class Pr>
 void GridSlam<Pr>::normalize() {
   const P total = slam_detail::sum_pairwise(prob_, pi_.data(), pi_.size());
   if (prob_.is_zero(total))
-    throw std::runtime_error("SLAM: the pose grid lost all its probability");
+    fail<std::runtime_error>("SLAM: the pose grid lost all its probability");
   for (P& p : pi_) p = prob_.div(p, total);
 }
 
@@ -183,49 +151,52 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
 
   // The predicted mean, in mm and angle units, and the window centred on it.
   const auto mean_angle = static_cast<std::int32_t>(estimate_.theta_q8 >> 8);
-  const auto [move_x, move_y] = rotate(mean_angle, dx, dy);
+  const auto [move_x, move_y] = rays().rotate(mean_angle, dx, dy);
   const std::int64_t x0 = round_div(estimate_.x_um, 1000) + move_x - (n_ / 2) * c;
   const std::int64_t y0 = round_div(estimate_.y_um, 1000) + move_y - (n_ / 2) * c;
   const std::int64_t theta0 = round_div(estimate_.theta_q8, 256) + dt - (nt_ / 2) * unit;
   const int nox = static_cast<int>(round_div(x0, c)), noy = static_cast<int>(round_div(y0, c));
 
   // A normalized kernel over index shifts m: error m * step + offset, within 3 sigma (and at
-  // least the nearest shift); offset is the move of the origin less the odometry's.
-  std::vector<P> kernel_x, kernel_y, kernel_t;
+  // least the nearest shift); offset is the move of the origin less the odometry's. Only the
+  // shifts that keep a window of `size` inside itself are kept (their storage is reserved once);
+  // the total runs over all of them.
   const auto make_kernel = [&](std::vector<P>& k, std::int64_t offset, std::int64_t step,
-                               std::int64_t sigma) {
+                               std::int64_t sigma, std::int64_t size) {
     const std::int64_t reach = 3 * sigma + step;
     const std::int64_t lo = -floor_div(reach + offset, step);  // ceil((-reach - offset) / step)
     const std::int64_t hi = floor_div(reach - offset, step);
+    const std::int64_t kept_lo = std::max(lo, 1 - size), kept_hi = std::min(hi, size - 1);
     k.clear();
     P total = prob_.zero();
     for (std::int64_t m = lo; m <= hi; ++m) {
       const std::int64_t e = m * step + offset;
-      k.push_back(prob_.gaussian(e * e, sigma * sigma));
-      total = prob_.add(total, k.back());
+      const P p = prob_.gaussian(e * e, sigma * sigma);
+      if (m >= kept_lo && m <= kept_hi) k.push_back(p);
+      total = prob_.add(total, p);
     }
     for (P& p : k) p = prob_.div(p, total);
-    return lo;
+    return kept_lo;
   };
 
   std::fill(next_.begin(), next_.end(), prob_.zero());
   const SlamPose origin = pose_of(0);  // the old window's
-  const std::int64_t lo_t = make_kernel(kernel_t, theta0 - origin.theta - dt, unit, s_t);
+  const std::int64_t lo_t = make_kernel(kernel_t_, theta0 - origin.theta - dt, unit, s_t, nt_);
   const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
   for (int k = 0; k < nt_; ++k) {
     const P* slice = &pi_[pose_index(0, 0, k)];
     if (std::all_of(slice, slice + nn, [&](P p) { return prob_.is_zero(p); })) continue;
-    const auto [shift_x, shift_y] = rotate(slice_angle(k), dx, dy);
-    const std::int64_t lo_x = make_kernel(kernel_x, x0 - origin.x_mm - shift_x, c, s_xy);
-    const std::int64_t lo_y = make_kernel(kernel_y, y0 - origin.y_mm - shift_y, c, s_xy);
+    const auto [shift_x, shift_y] = rays().rotate(slice_angle(k), dx, dy);
+    const std::int64_t lo_x = make_kernel(kernel_x_, x0 - origin.x_mm - shift_x, c, s_xy, n_);
+    const std::int64_t lo_y = make_kernel(kernel_y_, y0 - origin.y_mm - shift_y, c, s_xy, n_);
     // Along x: row_[j][i'] = sum_i slice[j][i] K_x(i' - i).
     for (int j = 0; j < n_; ++j)
       for (int i2 = 0; i2 < n_; ++i2) {
         P sum = prob_.zero();
-        for (std::size_t m = 0; m < kernel_x.size(); ++m) {
+        for (std::size_t m = 0; m < kernel_x_.size(); ++m) {
           const std::int64_t i = i2 - (lo_x + static_cast<std::int64_t>(m));
           if (i < 0 || i >= n_) continue;
-          sum = prob_.add(sum, prob_.mul(slice[j * n_ + i], kernel_x[m]));
+          sum = prob_.add(sum, prob_.mul(slice[j * n_ + i], kernel_x_[m]));
         }
         row_[static_cast<std::size_t>(j * n_ + i2)] = sum;
       }
@@ -233,20 +204,21 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
     for (int j2 = 0; j2 < n_; ++j2)
       for (int i2 = 0; i2 < n_; ++i2) {
         P sum = prob_.zero();
-        for (std::size_t m = 0; m < kernel_y.size(); ++m) {
+        for (std::size_t m = 0; m < kernel_y_.size(); ++m) {
           const std::int64_t j = j2 - (lo_y + static_cast<std::int64_t>(m));
           if (j < 0 || j >= n_) continue;
-          sum = prob_.add(sum, prob_.mul(row_[static_cast<std::size_t>(j * n_ + i2)], kernel_y[m]));
+          sum =
+              prob_.add(sum, prob_.mul(row_[static_cast<std::size_t>(j * n_ + i2)], kernel_y_[m]));
         }
         plane_[static_cast<std::size_t>(j2 * n_ + i2)] = sum;
       }
     // Over the headings.
-    for (std::size_t m = 0; m < kernel_t.size(); ++m) {
+    for (std::size_t m = 0; m < kernel_t_.size(); ++m) {
       const std::int64_t k2 = k + lo_t + static_cast<std::int64_t>(m);
       if (k2 < 0 || k2 >= nt_) continue;
       P* target = &next_[pose_index(0, 0, static_cast<int>(k2))];
       for (std::size_t q = 0; q < nn; ++q)
-        target[q] = prob_.add(target[q], prob_.mul(plane_[q], kernel_t[m]));
+        target[q] = prob_.add(target[q], prob_.mul(plane_[q], kernel_t_[m]));
     }
   }
   std::swap(pi_, next_);
@@ -270,35 +242,35 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
                                    static_cast<std::size_t>(config.beams));
   const std::int64_t sigma = setup_.sigma_mm, window = 3 * sigma;
   const std::int64_t width = map_.geometry.width;
+  const IntegerRays rays = this->rays();
   ray_offsets_.clear();
   ray_likelihoods_.clear();
-  rays_.clear();
-  std::vector<std::uint32_t> heading_rays(static_cast<std::size_t>(nt_) + 1, 0);
+  scan_rays_.clear();
   for (int k = 0; k < nt_; ++k) {
-    heading_rays[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(rays_.size());
+    heading_rays_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(scan_rays_.size());
     const std::int32_t a = slice_angle(k);
-    const auto [mx, my] = rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
+    const auto [mx, my] = rays.rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
     for (std::size_t b = stride / 2; b < count; b += stride) {
       const std::int64_t z = scan.range_mm[b];
       if (z <= 0 || z >= setup_.max_range_mm) continue;
       Ray ray{static_cast<std::uint32_t>(ray_offsets_.size()), 0, 0, static_cast<std::int32_t>(z)};
       bool near = false;
-      walk_ray(mx + fx_, my + fy_, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b],
-               z + window, [&](int cx, int cy, std::int64_t d) {
-                 if (!near && d >= z - window) {
-                   near = true;
-                   ray.mid = static_cast<std::uint32_t>(ray_offsets_.size());
-                 }
-                 ray_offsets_.push_back(static_cast<std::int32_t>(cy * width + cx));
-                 ray_likelihoods_.push_back(near ? prob_.gaussian((z - d) * (z - d), sigma * sigma)
-                                                 : prob_.zero());
-               });
+      rays.walk(mx + fx_, my + fy_, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b],
+                z + window, [&](int cx, int cy, std::int64_t d) {
+                  if (!near && d >= z - window) {
+                    near = true;
+                    ray.mid = static_cast<std::uint32_t>(ray_offsets_.size());
+                  }
+                  ray_offsets_.push_back(static_cast<std::int32_t>(cy * width + cx));
+                  ray_likelihoods_.push_back(near ? prob_.gaussian((z - d) * (z - d), sigma * sigma)
+                                                  : prob_.zero());
+                });
       if (!near) ray.mid = static_cast<std::uint32_t>(ray_offsets_.size());
       ray.end = static_cast<std::uint32_t>(ray_offsets_.size());
-      rays_.push_back(ray);
+      scan_rays_.push_back(ray);
     }
   }
-  heading_rays[static_cast<std::size_t>(nt_)] = static_cast<std::uint32_t>(rays_.size());
+  heading_rays_[static_cast<std::size_t>(nt_)] = static_cast<std::uint32_t>(scan_rays_.size());
 
   const std::int8_t* cells = map_.cells.data();
   for (int k = 0; k < nt_; ++k)
@@ -308,9 +280,9 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
         if (prob_.is_zero(pose)) continue;
         const std::int8_t* base = cells + map_index(ox_ + i, oy_ + j);
         P product = prob_.one();
-        for (std::uint32_t r = heading_rays[static_cast<std::size_t>(k)];
-             r < heading_rays[static_cast<std::size_t>(k) + 1]; ++r) {
-          const Ray& ray = rays_[r];
+        for (std::uint32_t r = heading_rays_[static_cast<std::size_t>(k)];
+             r < heading_rays_[static_cast<std::size_t>(k) + 1]; ++r) {
+          const Ray& ray = scan_rays_[r];
           P empty_before =
               prob_.product_of_empty(base, &ray_offsets_[ray.begin], ray.mid - ray.begin);
           P sum = prob_.zero();
@@ -332,27 +304,18 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
 // reading, the precomputed narrow ISM laid along its ray; indices of one cell add up.
 template <class Pr>
 void GridSlam<Pr>::add_pose_scan(int cx, int cy, std::int32_t a, const SlamScan& scan) {
-  const NarrowIsmTable& ism = setup_.ism;
-  const std::int64_t c = setup_.cell_mm;
-  const auto [mx, my] = rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
+  const IntegerRays rays = this->rays();
+  const auto [mx, my] = rays.rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
   const std::int64_t base = map_index(cx, cy), width = map_.geometry.width;
-  for (std::size_t b = 0; b < scan.range_mm.size(); ++b) {
-    const std::int64_t z = scan.range_mm[b];
-    if (z <= 0 || z >= setup_.max_range_mm) continue;
-    const auto bin_z = static_cast<std::size_t>((z + ism.z_step_mm / 2) / ism.z_step_mm);
-    const std::int8_t* indices = ism.indices.data() + ism.begin[bin_z];
-    const std::int64_t cells = ism.begin[bin_z + 1] - ism.begin[bin_z];
-    walk_ray(mx + fx_, my + fy_, a + setup_.sensor.mount_theta + setup_.sensor.bearing[b],
-             cells * c + c / 2, [&](int ix, int iy, std::int64_t d) {
-               const std::int64_t k = (d + c / 2) / c;  // line-of-sight cell, 1-based
-               if (k < 1 || k > cells) return;
-               const auto cell = static_cast<std::size_t>(base + std::int64_t{iy} * width + ix);
-               std::int16_t& sum = scan_image_[cell];
-               if (sum == 0) touched_.push_back(static_cast<std::int32_t>(cell));
-               sum = static_cast<std::int16_t>(
-                   std::clamp(sum + indices[k - 1], -setup_.max_seps_index, setup_.max_seps_index));
-             });
-  }
+  for_each_ism_cell(
+      rays, setup_.ism, mx + fx_, my + fy_, a + setup_.sensor.mount_theta, setup_.sensor.bearing,
+      scan.range_mm, setup_.max_range_mm, [&](int ix, int iy, std::int8_t n) {
+        const auto cell = static_cast<std::size_t>(base + std::int64_t{iy} * width + ix);
+        std::int16_t& sum = scan_image_[cell];
+        if (sum == 0) touched_.push_back(static_cast<std::int32_t>(cell));
+        sum = static_cast<std::int16_t>(
+            std::clamp(sum + n, -setup_.max_seps_index, setup_.max_seps_index));
+      });
 }
 
 // P(o_c | z, Pi) = sum_x Pi(x) ISM_x(c) over the poses above the cut-off (renormalized), cells
@@ -441,14 +404,14 @@ void GridSlam<Pr>::update_estimate() {
   const std::int64_t x0_um = origin.x_mm * 1000, y0_um = origin.y_mm * 1000;
   const std::int64_t theta0_q8 = origin.theta * 256;
   if constexpr (std::is_integral_v<W>) {
-    if (s <= 0) throw std::runtime_error("SLAM: the pose grid has no weight");
-    // Moments of large windows pass 2^63 once shifted: 128 bits (integer all the same).
-    __extension__ using wide = __int128;
-    const auto mean_q16 = [&](W m) { return static_cast<std::int64_t>((wide{m} << 16) / s); };
+    if (s <= 0) fail<std::runtime_error>("SLAM: the pose grid has no weight");
+    // Moments of large windows pass 2^63 once shifted: (m 2^16) / s is taken as
+    // (m / s) 2^16 + ((m % s) 2^16) / s, the same quotient in 64 bits (32-bit chips have no
+    // 128-bit integers).
+    const auto mean_q16 = [&](W m) { return ((m / s) << 16) + ((m % s) << 16) / s; };
     const auto var_q16 = [&](W m2, W m) {
-      const wide mean = mean_q16(m);
-      return static_cast<std::int64_t>(
-          std::max<wide>(0, ((wide{m2} << 16) / s) - ((mean * mean) >> 16)));
+      const std::int64_t mean = mean_q16(m);
+      return std::max<std::int64_t>(0, mean_q16(m2) - ((mean * mean) >> 16));
     };
     estimate_.x_um = x0_um + ((mean_q16(sx) * cell_um) >> 16);
     estimate_.y_um = y0_um + ((mean_q16(sy) * cell_um) >> 16);
@@ -456,7 +419,7 @@ void GridSlam<Pr>::update_estimate() {
     estimate_.sigma_um =
         (slam_detail::isqrt((var_q16(sxx, sx) + var_q16(syy, sy)) << 16) * cell_um) >> 16;
   } else {
-    if (!(s > 0)) throw std::runtime_error("SLAM: the pose grid has no weight");
+    if (!(s > 0)) fail<std::runtime_error>("SLAM: the pose grid has no weight");
     const double mx = sx / s, my = sy / s, mt = st / s;
     const double var = std::max(0.0, sxx / s - mx * mx) + std::max(0.0, syy / s - my * my);
     estimate_.x_um = x0_um + std::llround(mx * static_cast<double>(cell_um));

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "golden/failure.hpp"
 #include "golden/scan_insertion.hpp"
 #include "golden/slam_probabilities.hpp"
 
@@ -55,9 +56,9 @@ double SlamRun::mean_sigma() const {
 }
 
 void check_slam_log(const Log& log) {
-  if (log.scans.empty()) throw std::invalid_argument("the log has no scans");
+  if (log.scans.empty()) fail<std::invalid_argument>("the log has no scans");
   const Scan& first = log.scans.front();
-  if (first.ranges.empty()) throw std::invalid_argument(scan_name(log, 0) + " has no ranges");
+  if (first.ranges.empty()) fail<std::invalid_argument>(scan_name(log, 0) + " has no ranges");
   bool moves = !log.odometry.empty();
   for (std::size_t i = 1; i < log.scans.size(); ++i) {
     const Scan& s = log.scans[i];
@@ -68,11 +69,11 @@ void check_slam_log(const Log& log) {
                           : !same_pose(s.sensor_mount, first.sensor_mount)       ? "sensor mount"
                                                                                  : nullptr;
     if (differs)
-      throw std::invalid_argument(scan_name(log, i) + " has another " + differs +
+      fail<std::invalid_argument>(scan_name(log, i) + " has another " + differs +
                                   " than the first scan; SLAM needs one sensor geometry");
   }
   if (!moves && log.scans.size() > 1)
-    throw std::invalid_argument(
+    fail<std::invalid_argument>(
         "the log has no odometry: no ODOM record, and every scan carries the same robot pose");
 }
 
@@ -96,7 +97,7 @@ std::vector<SlamScan> quantize_scans(const Log& log, const SlamConfig& config, S
       const Pose2 u = relative(log.scans[i - 1].robot, scan.robot);
       if (!std::isfinite(u.x) || !std::isfinite(u.y) || !std::isfinite(u.theta) ||
           std::hypot(u.x, u.y) > 1000.0)
-        throw std::invalid_argument(scan_name(log, i) +
+        fail<std::invalid_argument>(scan_name(log, i) +
                                     ": the odometry jumps more than 1 km or is not finite");
       s.odom_dx_mm = static_cast<std::int32_t>(std::llround(u.x * 1000.0));
       s.odom_dy_mm = static_cast<std::int32_t>(std::llround(u.y * 1000.0));

@@ -5,8 +5,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "golden/failure.hpp"
+#include "golden/ray_insertion.hpp"
 #include "golden/resolution.hpp"
-#include "golden/scan_insertion.hpp"
 #include "golden/slam.hpp"
 #include "golden/slam_probabilities.hpp"
 
@@ -14,7 +15,7 @@ namespace intgrid {
 namespace {
 
 void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument("SLAM setting " + field + " " + what);
+  if (!ok) fail<std::invalid_argument>("SLAM setting " + field + " " + what);
 }
 
 std::int32_t angle_units(double radians) {
@@ -70,11 +71,11 @@ void check_slam_config(const SlamConfig& c) {
 SlamSetup make_slam_setup(const SlamConfig& config, const Scan& geometry, double reach_m) {
   check_slam_config(config);
   if (!std::isfinite(reach_m) || reach_m < 0.0)
-    throw std::invalid_argument("SLAM: bad odometry reach");
+    fail<std::invalid_argument>("SLAM: bad odometry reach");
   SlamSetup s;
   s.config = config;
   s.cell_mm = millimetres(config.cell);
-  s.sigma_mm = std::max(1, millimetres(config.sigma));
+  s.sigma_mm = std::max<std::int32_t>(1, millimetres(config.sigma));
   s.max_range_mm = millimetres(config.max_range);
 
   for (std::size_t i = 0; i < geometry.ranges.size(); ++i)
@@ -84,7 +85,7 @@ SlamSetup make_slam_setup(const SlamConfig& config, const Scan& geometry, double
   s.sensor.mount_theta = angle_units(geometry.sensor_mount.theta);
   const double mount = std::hypot(geometry.sensor_mount.x, geometry.sensor_mount.y);
   if (!std::isfinite(mount) || mount > 100.0)
-    throw std::invalid_argument("SLAM: the sensor is mounted more than 100 m from the robot");
+    fail<std::invalid_argument>("SLAM: the sensor is mounted more than 100 m from the robot");
 
   // A square map centred on the first pose, cell (half, half) centred on it, that holds every
   // ray of every window pose (GridSlam::check_window_inside_map) while the odometry stays
@@ -94,7 +95,7 @@ SlamSetup make_slam_setup(const SlamConfig& config, const Scan& geometry, double
   const auto half =
       static_cast<long long>(std::ceil(half_m / config.cell)) + config.window_cells / 2 + 4;
   if (2 * half + 1 > 65535)
-    throw std::invalid_argument("SLAM: the map would exceed 65535 cells a side");
+    fail<std::invalid_argument>("SLAM: the map would exceed 65535 cells a side");
   s.origin_cell_x = s.origin_cell_y = static_cast<int>(half);
   s.map_geometry.width = s.map_geometry.height = static_cast<int>(2 * half + 1);
   s.map_geometry.resolution = config.cell;
@@ -102,32 +103,15 @@ SlamSetup make_slam_setup(const SlamConfig& config, const Scan& geometry, double
       -(static_cast<double>(half) + 0.5) * config.cell;
   check_geometry(s.map_geometry);
 
-  s.sin_q16.resize(kAngleUnitsPerTurn);
-  for (std::int32_t a = 0; a < kAngleUnitsPerTurn; ++a)
-    s.sin_q16[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(
-        std::lround(std::sin(2.0 * std::numbers::pi * a / kAngleUnitsPerTurn) * 65536.0));
+  s.sin_q16 = make_sine_table_q16();
 
   // The narrow ISM of every reading on a grid of z_step, as the map job's integer path makes it.
-  const GaussianBeamModel model{config.sigma, 0.0};
   s.codec = SepsCodec::for_levels(config.seps_bits, narrow_pmax(config.cell, config.sigma),
                                   config.seps_levels);
   s.max_seps_index = s.codec.max_index();
-  s.ism.z_step_mm = std::max(1, s.cell_mm / 8);
-  IndexScanInserter<std::int8_t> inserter(model, config.cell, s.codec, VetoBound::strongest_claim,
-                                          s.ism.z_step_mm / 1000.0);
-  const std::int32_t bins = s.max_range_mm / s.ism.z_step_mm + 2;
-  s.ism.begin.push_back(0);
-  for (std::int32_t b = 0; b < bins; ++b) {
-    if (b > 0) {
-      const std::vector<std::int8_t>& beam = inserter.beam_indices(b * s.ism.z_step_mm / 1000.0);
-      for (const std::int8_t n : beam)
-        s.ism.indices.push_back(n >= 0
-                                    ? n
-                                    : static_cast<std::int8_t>(-((-n + config.empty_divisor - 1) /
-                                                                 config.empty_divisor)));
-    }
-    s.ism.begin.push_back(static_cast<std::uint32_t>(s.ism.indices.size()));
-  }
+  s.ism = make_index_ism_table(GaussianBeamModel{config.sigma, 0.0}, config.cell, s.codec,
+                               std::max<std::int32_t>(1, s.cell_mm / 8), s.max_range_mm,
+                               config.empty_divisor);
 
   const double unit_rad = 2.0 * std::numbers::pi / kAngleUnitsPerTurn;
   s.motion_xy0_mm = millimetres(config.motion_xy0);
@@ -195,6 +179,21 @@ GridSlam<Pr>::GridSlam(const SlamSetup& setup, Pr probabilities)
   pi_[pose_index(n_ / 2, n_ / 2, nt_ / 2)] = prob_.one();
   scan_image_.assign(map_.cells.size(), 0);
   slot_.assign(map_.cells.size(), -1);
+  kernel_x_.reserve(2 * static_cast<std::size_t>(n_));
+  kernel_y_.reserve(2 * static_cast<std::size_t>(n_));
+  kernel_t_.reserve(2 * static_cast<std::size_t>(nt_));
+  heading_rays_.assign(static_cast<std::size_t>(nt_) + 1, 0);
+  // A localization walks at most `beams` rays per heading, each to max_range + 3 sigma: a walk
+  // of length L crosses at most sqrt(2) L / cell + 2 cells.
+  const std::size_t count = setup.sensor.bearing.size();
+  const std::size_t beams = static_cast<std::size_t>(setup.config.beams);
+  const std::size_t stride = std::max<std::size_t>(1, (count + beams - 1) / beams);
+  const std::size_t rays_per_heading = (count + stride / 2) / stride + 1;
+  const std::size_t cells_per_ray =
+      2 * static_cast<std::size_t>((setup.max_range_mm + 3 * setup.sigma_mm) / setup.cell_mm) + 4;
+  scan_rays_.reserve(static_cast<std::size_t>(nt_) * rays_per_heading);
+  ray_offsets_.reserve(scan_rays_.capacity() * cells_per_ray);
+  ray_likelihoods_.reserve(ray_offsets_.capacity());
 }
 
 template GridSlam<DoubleProbabilities>::GridSlam(const SlamSetup&, DoubleProbabilities);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 
 TrajectoryError absolute_trajectory_error(std::span<const TimedPose> estimate,
@@ -21,7 +23,7 @@ TrajectoryError absolute_trajectory_error(std::span<const TimedPose> estimate,
     headings += std::abs(wrap_angle(p.pose.theta - reference[r].pose.theta));
     ++e.matched;
   }
-  if (e.matched == 0) throw std::invalid_argument("no pose has a reference at the same time");
+  if (e.matched == 0) fail<std::invalid_argument>("no pose has a reference at the same time");
   e.rmse = std::sqrt(squares / static_cast<double>(e.matched));
   e.mean_heading = headings / static_cast<double>(e.matched);
   return e;

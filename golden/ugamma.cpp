@@ -4,13 +4,15 @@
 #include <limits>
 #include <stdexcept>
 
+#include "golden/failure.hpp"
+
 namespace intgrid {
 
 UGamma::UGamma(int bits, int steps_per_halving)
     : bits_(bits), steps_per_halving_(steps_per_halving) {
-  if (bits < 8 || bits > 31) throw std::invalid_argument("U_gamma index width must be 8..31 bits");
+  if (bits < 8 || bits > 31) fail<std::invalid_argument>("U_gamma index width must be 8..31 bits");
   if (steps_per_halving < 1 || steps_per_halving > 4096)
-    throw std::invalid_argument("U_gamma steps per halving must be 1..4096");
+    fail<std::invalid_argument>("U_gamma steps per halving must be 1..4096");
   ln_gamma_ = -std::log(2.0) / steps_per_halving;
   gamma_ = std::exp(ln_gamma_);
   zero_ = static_cast<UIndex>((std::int64_t{1} << (bits - 1)) - 1);
@@ -36,7 +38,7 @@ UGamma::UGamma(int bits, int steps_per_halving)
 }
 
 UIndex UGamma::from_log(double ln_u) const {
-  if (std::isnan(ln_u)) throw std::invalid_argument("U_gamma: log of a probability is NaN");
+  if (std::isnan(ln_u)) fail<std::invalid_argument>("U_gamma: log of a probability is NaN");
   if (ln_u == -std::numeric_limits<double>::infinity()) return zero_;
   const double v = std::round(ln_u / ln_gamma_);
   if (v >= static_cast<double>(zero_)) return zero_;
@@ -45,7 +47,7 @@ UIndex UGamma::from_log(double ln_u) const {
 }
 
 UIndex UGamma::from_probability(double p) const {
-  if (std::isnan(p) || p < 0.0) throw std::invalid_argument("U_gamma: probability must be >= 0");
+  if (std::isnan(p) || p < 0.0) fail<std::invalid_argument>("U_gamma: probability must be >= 0");
   return p == 0.0 ? zero_ : from_log(std::log(p));
 }
 

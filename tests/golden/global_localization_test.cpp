@@ -223,8 +223,9 @@ TEST(GlobalLocalization, ClaimsAreTheClampedQuantizedNarrowIsm) {
       EXPECT_EQ(claims.n_top[std::size_t(d)], top);
       const int veto = std::min(top, config.veto_levels);
       const auto& table = claims.claim[std::size_t(d)];
-      ASSERT_LE(table.size(), n + 1);
+      ASSERT_LE(table.size(), n + 2);
       EXPECT_EQ(table[0], 0);
+      EXPECT_EQ(table.back(), 0);  // the 0 every rho past the table reads
       // No first hit lies farther than the lattice's longest line: the table stops there.
       const auto longest = static_cast<std::size_t>(std::max(lmap.width(), lmap.height()));
       for (std::size_t k = 1; k <= n; ++k) {
@@ -241,6 +242,38 @@ TEST(GlobalLocalization, ClaimsAreTheClampedQuantizedNarrowIsm) {
   // Every reading, near or far, claims up to seps_levels: far ones are not drowned by near ones.
   EXPECT_EQ(lmap.claims({0.3, 0.0}).n_top[0], config.seps_levels);
   EXPECT_EQ(lmap.claims({4.0, 0.0}).n_top[0], config.seps_levels);
+}
+
+// The double form holds the log-odds the indices round, and its dense form adds them alike: with
+// one reading every pose cell holds one claim, and dividing by the reading's lambda gives back
+// the integer pose grid to within rounding.
+TEST(GlobalLocalization, LogOddsClaimsAndTheirDenseFormRoundToTheIntegerOnes) {
+  SimRandom random(31);
+  const ProbabilityGrid map = random_map(30, 24, 0.05, 0.08, 0.1, random);
+  GlobalLocConfig config = small_config(0.1, 32);
+  const LocalizationMap lmap(map, 0.65, 0.196, config);
+  int compared = 0;
+  for (int n = 0; n < 20; ++n) {
+    const RangeReading reading{random.uniform(0.05, 2.5), random.uniform(-3.0, 3.0)};
+    const ReadingClaims claims = lmap.claims(reading);
+    const LogOddsClaims log_odds = lmap.log_odds_claims(reading);
+    ASSERT_EQ(log_odds.shift, claims.shift);
+    std::vector<std::int32_t> pog(lmap.pose_cells(), 0);
+    std::vector<double> pog_double(lmap.pose_cells(), 0.0);
+    lmap.add_reading_dense(claims, pog);
+    lmap.add_reading_dense(log_odds, pog_double);
+    const std::size_t slice = pog.size() / 32;
+    for (int k = 0; k < 32; ++k) {
+      // Each direction's step has its own ISM and lambda, recoverable where the top is reached.
+      const auto d = std::size_t((k + claims.shift) % 32);
+      if (claims.n_top[d] != config.seps_levels) continue;
+      const double lambda = log_odds.n_top[d] / config.seps_levels;
+      for (std::size_t q = std::size_t(k) * slice; q < std::size_t(k + 1) * slice; ++q)
+        ASSERT_LE(std::abs(pog_double[q] / lambda - pog[q]), 0.5 + 1e-9) << "reading " << n;
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 200);
 }
 
 // ---------------------------------------------------------------------------------------------

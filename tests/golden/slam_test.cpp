@@ -273,7 +273,7 @@ TEST(SlamSetup, NarrowIsmTableIsTheScanInsertersBeams) {
     const std::size_t bins = static_cast<std::size_t>(s.max_range_mm / t.z_step_mm + 2);
     ASSERT_EQ(t.begin.size(), bins + 1);
     EXPECT_EQ(t.begin[0], t.begin[1]);  // a reading of 0 has no cells
-    EXPECT_EQ(t.begin.back(), t.indices.size());
+    EXPECT_EQ(t.begin.back(), t.values.size());
     // The oracle: the integer scan inserter with the same model, codec and veto.
     IndexScanInserter<std::int8_t> inserter(GaussianBeamModel{c.sigma, 0.0}, c.cell, s.codec,
                                             VetoBound::strongest_claim, t.z_step_mm / 1000.0);
@@ -286,7 +286,7 @@ TEST(SlamSetup, NarrowIsmTableIsTheScanInsertersBeams) {
       for (std::size_t k = 0; k < beam.size(); ++k) {
         const int n = beam[k];
         const int expected = n >= 0 ? n : -((-n + divisor - 1) / divisor);
-        ASSERT_EQ(t.indices[t.begin[b] + k], expected) << "bin " << b << " cell " << k;
+        ASSERT_EQ(t.values[t.begin[b] + k], expected) << "bin " << b << " cell " << k;
         positive = positive || n > 0;
       }
       // Every reading claims some cell occupied, near z.
