@@ -7,6 +7,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev
   libsystemc-dev verilator yosys nextpnr-ice40
   gnuplot-nox
+  gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
 )
 missing=()
 for p in "${packages[@]}"; do
