@@ -57,6 +57,7 @@ struct Calibration {
 struct Target {
   std::map<Key, Measured> operations;
   std::vector<Calibration> calibrations;
+  std::uint64_t heap_bytes = 0;
   bool done = false;
 };
 
@@ -91,6 +92,8 @@ Target parse_target(const std::string& output) {
           std::stoull(value_of(line, "cells")), std::stoull(value_of(line, "instructions")),
           std::stoull(value_of(line, "allocations")),
           std::stoull(value_of(line, "digest"), nullptr, 16)};
+    } else if (line.rfind("heap ", 0) == 0) {
+      t.heap_bytes = std::stoull(value_of(line, "bytes"));
     } else if (line == "done") {
       t.done = true;
     }
@@ -174,7 +177,10 @@ std::string table(const Target& t, const std::string& size_a, const std::string&
         "the code and the constant inputs ("
      << embedded::input_bytes()
      << " bytes); `.stack` and `.heap` are the linker script's reservations (256 KiB in SRAM, "
-        "16 MiB in PSRAM), not use:\n\n"
+        "16 MiB in PSRAM), not use: malloc took "
+     << t.heap_bytes
+     << " bytes of the heap (its high-water mark, every table and grid of the "
+        "workload).\n\n"
      << image_sections(size_a) << "\n"
      << tools << "\n";
   return md.str();

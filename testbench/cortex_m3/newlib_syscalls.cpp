@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstddef>
 
+#include "testbench/cortex_m3/platform.hpp"
 #include "testbench/cortex_m3/semihosting.hpp"
 
 extern "C" {
@@ -11,10 +12,21 @@ extern "C" {
 extern char __heap_start[];
 extern char __heap_end[];
 
+}  // extern "C"
+
+namespace {
+constinit char* heap_top = __heap_start;  // what _sbrk has handed to malloc ends here
+}  // namespace
+
+std::size_t intgrid::cortex_m3::heap_bytes() {
+  return static_cast<std::size_t>(heap_top - __heap_start);
+}
+
+extern "C" {
+
 // malloc's memory: the heap region of the linker script. librdimon's weak _sbrk would bound
 // the heap by the stack pointer, which here lies below the heap (SSRAM2&3 versus PSRAM).
 void* _sbrk(std::ptrdiff_t increment) {
-  constinit static char* heap_top = __heap_start;
   if (increment > __heap_end - heap_top || increment < __heap_start - heap_top) {
     errno = ENOMEM;
     return reinterpret_cast<void*>(-1);

@@ -26,6 +26,10 @@ std::uint64_t instructions_executed();
 std::size_t allocations();
 std::size_t deallocations();
 
+// Bytes of the heap region malloc has taken so far (newlib's malloc does not give them back):
+// the program's peak heap, to within malloc's bookkeeping.
+std::size_t heap_bytes();
+
 // Instructions and allocations of one call of `region`. The instructions include the
 // counter's own cost, about 30 instructions: an empty region counts 0 or 40.
 struct RegionCost {

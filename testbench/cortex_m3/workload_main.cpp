@@ -32,6 +32,7 @@ int main() {
           embedded::name_of(operation), integer ? "int" : "double", ull(r.cells),
           ull(cost.instructions), ull(cost.allocations), ull(r.digest));
     }
+  std::printf("heap bytes=%llu\n", ull(cortex_m3::heap_bytes()));
   std::printf("done\n");
   return 0;
 }
