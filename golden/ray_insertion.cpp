@@ -22,17 +22,14 @@ namespace {
 // Bins 0..max_range_mm / z_step_mm + 1, bin 0 empty; beam(z) gives the values of bin z.
 template <class T, class Beam>
 IsmTable<T> make_table(std::int32_t z_step_mm, std::int32_t max_range_mm, Beam&& beam) {
-  IsmTable<T> table;
-  table.z_step_mm = z_step_mm;
+  std::vector<std::uint32_t> begin{0};
+  std::vector<T> values;
   const std::int32_t bins = max_range_mm / z_step_mm + 2;
-  table.begin.push_back(0);
   for (std::int32_t b = 0; b < bins; ++b) {
-    if (b > 0) beam(b * z_step_mm / 1000.0, table.values);
-    table.begin.push_back(static_cast<std::uint32_t>(table.values.size()));
-    table.longest =
-        std::max(table.longest, table.begin.back() - table.begin[table.begin.size() - 2]);
+    if (b > 0) beam(b * z_step_mm / 1000.0, values);
+    begin.push_back(static_cast<std::uint32_t>(values.size()));
   }
-  return table;
+  return make_ism_table(z_step_mm, std::move(begin), std::move(values));
 }
 
 }  // namespace

@@ -62,9 +62,9 @@ class IntegerRays {
     const std::int64_t c = cell_mm_, c2 = 2 * c;        // doubled millimetres
     const std::int64_t x = 2 * px + c, y = 2 * py + c;  // from the cell's lower-left corner
     // In 32 bits: a 64-bit division is a library call on a 32-bit core.
-    const auto ix0 = static_cast<std::int32_t>(x), iy0 = static_cast<std::int32_t>(y);
+    const auto x32 = static_cast<std::int32_t>(x), y32 = static_cast<std::int32_t>(y);
     const auto c2_32 = static_cast<std::int32_t>(c2);
-    int ix = floor_div(ix0, c2_32), iy = floor_div(iy0, c2_32);
+    int ix = floor_div(x32, c2_32), iy = floor_div(y32, c2_32);
     const std::int32_t cs = cos(angle), sn = sin(angle);
     const int step_x = cs > 0 ? 1 : -1, step_y = sn > 0 ? 1 : -1;
     const std::int64_t acs = cs < 0 ? -cs : cs, asn = sn < 0 ? -sn : sn;
@@ -115,6 +115,16 @@ struct IsmTable {
   }
 };
 using NarrowIsmTable = IsmTable<std::int8_t>;
+
+// A table from its bins, with `longest` derived from them.
+template <class T>
+IsmTable<T> make_ism_table(std::int32_t z_step_mm, std::vector<std::uint32_t> begin,
+                           std::vector<T> values) {
+  IsmTable<T> table{z_step_mm, std::move(begin), std::move(values)};
+  for (std::size_t b = 0; b + 1 < table.begin.size(); ++b)
+    table.longest = std::max(table.longest, table.begin[b + 1] - table.begin[b]);
+  return table;
+}
 
 // The integer table for readings below max_range_mm: the scan inserter's conservatively quantized
 // beams, the occupied bound veto (VetoBound::strongest_claim), and empty indices divided by

@@ -436,9 +436,7 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
   for (const SweepSpec& s : sweeps) names += (names.empty() ? "" : ",") + std::string(s.name);
   std::printf("wrote %s/globloc_{%s}.csv, globloc_timing.csv%s\n", o.out.string().c_str(),
               names.c_str(), plotted ? " and a PNG each" : "");
-  if (!plotted)
-    std::printf("note: %s not found, plots skipped (install gnuplot-nox, or pass --gnuplot PATH)\n",
-                o.gnuplot.c_str());
+  if (!plotted) print_plots_skipped(o.gnuplot);
   std::printf("wall time %.1f s\n",
               std::chrono::duration<double>(Clock::now() - wall_start).count());
 }

@@ -85,4 +85,9 @@ bool draw_pngs(const std::string& gnuplot, const std::string& script,
   return true;
 }
 
+void print_plots_skipped(const std::string& gnuplot) {
+  std::printf("note: %s not found, plots skipped (install gnuplot-nox, or pass --gnuplot PATH)\n",
+              gnuplot.c_str());
+}
+
 }  // namespace intgrid

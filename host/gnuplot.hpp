@@ -35,4 +35,7 @@ GnuplotProbe probe_gnuplot(const std::string& program);
 bool draw_pngs(const std::string& gnuplot, const std::string& script,
                const std::filesystem::path& script_path, std::initializer_list<AtomicFile*> pngs);
 
+// The note a figure prints when draw_pngs could not start gnuplot.
+void print_plots_skipped(const std::string& gnuplot);
+
 }  // namespace intgrid

@@ -579,9 +579,7 @@ void run_slam_sweeps(const SlamSweepOptions& o) {
       "\nwrote %s/slam_lambda.csv, slam_xi.csv, slam_depth.csv, slam_world.png, "
       "slam_maps.png%s\n",
       o.out.string().c_str(), plotted ? ", slam_lambda.png, slam_xi.png, slam_depth.png" : "");
-  if (!plotted)
-    std::printf("note: %s not found, plots skipped (install gnuplot-nox, or pass --gnuplot PATH)\n",
-                o.gnuplot.c_str());
+  if (!plotted) print_plots_skipped(o.gnuplot);
   std::printf("wall time %.1f s\n",
               std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
 }

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <fstream>
 #include <map>
 #include <new>
 #include <sstream>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "host/atomic_file.hpp"
+#include "host/text_io.hpp"
 #include "testbench/cortex_m3/workload.hpp"
 
 namespace {
@@ -121,12 +121,6 @@ std::string first_line(const std::string& text) {
   return text.substr(0, text.find('\n'));
 }
 
-std::string fixed(double v, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, v);
-  return text;
-}
-
 const std::map<std::string, std::string> kTitles = {
     {"tile_fusion", "index fusion of two 64 x 64 tiles"},
     {"scan_insertion", "scan insertion (361 readings, precomputed ISM table)"},
@@ -163,9 +157,9 @@ std::string table(const Target& t, const std::string& size_a, const std::string&
     const Measured& d = t.operations.at({name, "double"});
     const double cells = static_cast<double>(n.cells);
     md << "| " << kTitles.at(name) << " | " << n.cells << " | " << n.instructions << " | "
-       << fixed(static_cast<double>(n.instructions) / cells, 1) << " | " << d.instructions << " | "
-       << fixed(static_cast<double>(d.instructions) / cells, 1) << " | "
-       << fixed(static_cast<double>(d.instructions) / static_cast<double>(n.instructions), 1)
+       << printed("%.1f", static_cast<double>(n.instructions) / cells) << " | " << d.instructions
+       << " | " << printed("%.1f", static_cast<double>(d.instructions) / cells) << " | "
+       << printed("%.1f", static_cast<double>(d.instructions) / static_cast<double>(n.instructions))
        << "x |\n";
   }
   md << "\nCells: grid cells fused, cells the scan's rays update, poses of the window, pose "
@@ -187,11 +181,7 @@ std::string table(const Target& t, const std::string& size_a, const std::string&
 }
 
 void replace_section(const std::string& readme, const std::string& content) {
-  std::ifstream in(readme);
-  if (!in) throw std::runtime_error(readme + ": cannot read");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
+  std::string s = read_input_file(readme);
   const std::string begin = "<!-- embedded-table:begin -->\n", end = "<!-- embedded-table:end -->";
   const std::size_t a = s.find(begin), b = s.find(end);
   if (a == std::string::npos || b == std::string::npos || b < a)

@@ -109,13 +109,9 @@ RangeReading middle_reading() {
 }
 
 NarrowIsmTable host_index_table() {
-  NarrowIsmTable table;
-  table.z_step_mm = kInsertionZStepMm;
-  table.begin.assign(std::begin(inputs::kIsmBegin), std::end(inputs::kIsmBegin));
-  table.values.assign(std::begin(inputs::kIsmIndices), std::end(inputs::kIsmIndices));
-  for (std::size_t b = 0; b + 1 < table.begin.size(); ++b)
-    table.longest = std::max(table.longest, table.begin[b + 1] - table.begin[b]);
-  return table;
+  return make_ism_table<std::int8_t>(
+      kInsertionZStepMm, {std::begin(inputs::kIsmBegin), std::end(inputs::kIsmBegin)},
+      {std::begin(inputs::kIsmIndices), std::end(inputs::kIsmIndices)});
 }
 
 }  // namespace
