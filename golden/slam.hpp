@@ -25,10 +25,12 @@
 namespace intgrid {
 
 struct SlamConfig {
-  double cell = 0.1;               // map cell and pose-grid step (m), a whole number of millimetres
-  int headings = 1024;             // heading bins per turn: a power of two, 8..65536
-  int window_cells = 11;           // pose-grid cells per side in x and y (odd)
-  int window_headings = 21;        // pose-grid heading bins (odd): +-3.5 degrees at 1024
+  double cell = 0.1;      // map cell and pose-grid step (m), a whole number of millimetres
+  int headings = 1024;    // heading bins per turn: a power of two, 8..65536
+  int window_cells = 11;  // pose-grid cells per side in x and y (odd)
+  // Pose-grid heading bins (odd): +-10.5 degrees at 1024, as the odometry's heading can miss
+  // by several degrees in one scan and the motion model reaches only 3 sigma from its mean.
+  int window_headings = 61;
   int lambda = 1;                  // localization every lambda-th scan
   int xi = 1;                      // mapping every xi-th scan
   double sigma = 0.05;             // range noise of the beam model (m)
@@ -39,6 +41,10 @@ struct SlamConfig {
   int tempering = 3;
   double max_range = 30.0;    // readings at or past this are not used (m)
   double pose_cutoff = 0.01;  // mapping skips poses less probable than this
+  // A localization drops the poses it leaves less probable than this, so that the next one
+  // weighs the poses the motion model carries the rest to, not the whole window. Far below
+  // anything a localization revives: pruning at 1e-20 already changes the real log's run.
+  double pose_prune = 1e-40;
   // Spread of the motion model: sigma_xy = xy0 + xy_per_m |translation| + xy_per_rad |rotation|,
   // sigma_theta = theta0 + theta_per_m |translation| + theta_per_rad |rotation|.
   double motion_xy0 = 0.01;
@@ -165,6 +171,7 @@ class GridSlam {
                                      (kAngleUnitsPerTurn - 1));
   }
   std::size_t pose_index(int i, int j, int k) const;
+  bool slice_is_empty(int k) const;  // every pose of heading slice k has probability 0
   std::int64_t map_index(int cx, int cy) const;
   void check_window_inside_map() const;
 

@@ -63,6 +63,12 @@ std::size_t GridSlam<Pr>::pose_index(int i, int j, int k) const {
 }
 
 template <class Pr>
+bool GridSlam<Pr>::slice_is_empty(int k) const {
+  const auto slice = pi_.begin() + static_cast<std::ptrdiff_t>(pose_index(0, 0, k));
+  return std::all_of(slice, slice + n_ * n_, [&](P p) { return prob_.is_zero(p); });
+}
+
+template <class Pr>
 SlamPose GridSlam<Pr>::pose_of(std::size_t q) const {
   const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
   const auto i = static_cast<std::int64_t>(q % nn % static_cast<std::size_t>(n_));
@@ -184,8 +190,8 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
   const std::int64_t lo_t = make_kernel(kernel_t_, theta0 - origin.theta - dt, unit, s_t, nt_);
   const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
   for (int k = 0; k < nt_; ++k) {
+    if (slice_is_empty(k)) continue;
     const P* slice = &pi_[pose_index(0, 0, k)];
-    if (std::all_of(slice, slice + nn, [&](P p) { return prob_.is_zero(p); })) continue;
     const auto [shift_x, shift_y] = rays().rotate(slice_angle(k), dx, dy);
     const std::int64_t lo_x = make_kernel(kernel_x_, x0 - origin.x_mm - shift_x, c, s_xy, n_);
     const std::int64_t lo_y = make_kernel(kernel_y_, y0 - origin.y_mm - shift_y, c, s_xy, n_);
@@ -248,6 +254,9 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
   scan_rays_.clear();
   for (int k = 0; k < nt_; ++k) {
     heading_rays_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(scan_rays_.size());
+    // A heading no pose holds needs no rays: once pruned, the poses lie within the motion
+    // model's reach of the mean, a few bins of a wide window.
+    if (slice_is_empty(k)) continue;
     const std::int32_t a = slice_angle(k);
     const auto [mx, my] = rays.rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
     for (std::size_t b = stride / 2; b < count; b += stride) {
@@ -297,6 +306,8 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
         pose = prob_.mul(pose, prob_.root(product, config.tempering));
       }
   normalize();
+  for (P& p : pi_)
+    if (prob_.below_prune(p)) p = prob_.zero();
 }
 
 // The scan's indices seen from the window's offset in the SLAM-frame cell (cx, cy), heading

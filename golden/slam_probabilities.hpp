@@ -19,6 +19,7 @@ struct DoubleProbabilities {
   SepsCodec codec{8, 0.1};
   double floor = 1e-3;
   double cutoff = 0.01;
+  double prune = 1e-40;
   std::vector<double> occupied_of, empty_of;  // p_n and 1 - p_n, n = -max..max at [n + max]
   int max_seps = 0;
 
@@ -32,6 +33,7 @@ struct DoubleProbabilities {
   bool is_zero(P a) const { return !(a > 0.0); }
   P root(P a, int k) const { return k == 1 ? a : std::pow(a, 1.0 / k); }
   bool below_cutoff(P a) const { return a < cutoff; }
+  bool below_prune(P a) const { return a < prune; }
   bool more_probable(P a, P b) const { return a > b; }
   // exp(-e^2 / (2 s^2)): an unnormalized Gaussian of the error e, variance s^2.
   P gaussian(std::int64_t e2, std::int64_t s2) const {
@@ -60,6 +62,7 @@ struct IndexProbabilities {
   UGamma u{16, 16};
   UIndex floor = 0;
   UIndex cutoff = 0;
+  UIndex prune = 0;
   std::vector<UIndex> occupied_of, empty_of;  // as DoubleProbabilities, in U_gamma
   int max_seps = 0;
   std::int64_t gaussian_q20 = 0;         // 2^20 / (2 ln(1/gamma))
@@ -76,6 +79,7 @@ struct IndexProbabilities {
   bool is_zero(P a) const { return u.is_zero(a); }
   P root(P a, int k) const { return u.is_zero(a) ? a : a / k; }
   bool below_cutoff(P a) const { return a > cutoff; }
+  bool below_prune(P a) const { return a > prune; }
   bool more_probable(P a, P b) const { return a < b; }
   P gaussian(std::int64_t e2, std::int64_t s2) const {
     return u.saturate((e2 * gaussian_q20 / s2 + (1 << 19)) >> 20);

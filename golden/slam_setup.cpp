@@ -55,6 +55,8 @@ void check_slam_config(const SlamConfig& c) {
           "must be in (0, 1000] metres");
   require(std::isfinite(c.pose_cutoff) && c.pose_cutoff > 0.0 && c.pose_cutoff <= 1.0,
           "pose_cutoff", "must be in (0, 1]");
+  require(std::isfinite(c.pose_prune) && c.pose_prune >= 0.0 && c.pose_prune < c.pose_cutoff,
+          "pose_prune", "must be in [0, pose_cutoff)");
   for (const double v : {c.motion_xy0, c.motion_xy_per_m, c.motion_xy_per_rad, c.motion_theta0,
                          c.motion_theta_per_m, c.motion_theta_per_rad})
     require(non_negative(v) && v < 100.0, "motion noise", "must be finite, >= 0 and < 100");
@@ -129,6 +131,7 @@ DoubleProbabilities make_probabilities<DoubleProbabilities>(const SlamSetup& set
   p.codec = setup.codec;
   p.floor = setup.config.likelihood_floor;
   p.cutoff = setup.config.pose_cutoff;
+  p.prune = setup.config.pose_prune;
   p.max_seps = setup.max_seps_index;
   for (int n = -p.max_seps; n <= p.max_seps; ++n) {
     p.occupied_of.push_back(setup.codec.probability(n));
@@ -143,6 +146,7 @@ IndexProbabilities make_probabilities<IndexProbabilities>(const SlamSetup& setup
   p.u = UGamma(setup.config.ugamma_bits, setup.config.ugamma_steps_per_halving);
   p.floor = p.u.from_probability(setup.config.likelihood_floor);
   p.cutoff = p.u.from_probability(setup.config.pose_cutoff);
+  p.prune = p.u.from_probability(setup.config.pose_prune);
   p.max_seps = setup.max_seps_index;
   const double lambda = setup.codec.lambda();
   for (int n = -p.max_seps; n <= p.max_seps; ++n) {

@@ -48,6 +48,9 @@ void add_slam_options(CLI::App& cmd, SlamConfig& c) {
       ->delimiter(',');
   cmd.add_option("--pose-cutoff", c.pose_cutoff, "mapping skips poses less probable than this")
       ->capture_default_str();
+  cmd.add_option("--pose-prune", c.pose_prune,
+                 "a localization drops the poses it leaves less probable than this")
+      ->capture_default_str();
 }
 
 void add_slam_command(CLI::App& app) {

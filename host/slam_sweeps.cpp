@@ -490,6 +490,10 @@ SlamConfig default_sweep_config() {
   SlamConfig c;
   c.cell = 0.1;
   c.headings = 256;
+  c.window_headings = 21;  // +-14.8 degrees
+  // The thesis's pose grid: every pose weighed at every localization, so that the size sweep
+  // measures the cost of the grid (figure 3.14), not of the poses the motion model reaches.
+  c.pose_prune = 0.0;
   return c;
 }
 

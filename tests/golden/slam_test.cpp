@@ -164,14 +164,17 @@ std::vector<SlamScan> quantize(const Log& log, const SlamConfig& config) {
 }
 
 template <class Pr>
+double probability_of(const GridSlam<Pr>& slam, typename Pr::P p) {
+  if constexpr (std::is_same_v<Pr, IndexProbabilities>)
+    return slam.probabilities().u.to_probability(p);
+  else
+    return p;
+}
+
+template <class Pr>
 double mass(const GridSlam<Pr>& slam) {
   double total = 0.0;
-  for (const auto p : slam.pose_grid()) {
-    if constexpr (std::is_same_v<Pr, IndexProbabilities>)
-      total += slam.probabilities().u.to_probability(p);
-    else
-      total += p;
-  }
+  for (const auto p : slam.pose_grid()) total += probability_of(slam, p);
   return total;
 }
 
@@ -326,6 +329,10 @@ TEST(SlamSetup, ConfigCheckNamesEachBadField) {
       {"tempering", [](SlamConfig& c) { c.tempering = 0; }},
       {"max_range", [](SlamConfig& c) { c.max_range = -1.0; }},
       {"pose_cutoff", [](SlamConfig& c) { c.pose_cutoff = 0.0; }},
+      {"pose_prune", [](SlamConfig& c) { c.pose_prune = -1e-9; }},
+      {"pose_prune",
+       [](SlamConfig& c) { c.pose_prune = std::numeric_limits<double>::quiet_NaN(); }},
+      {"pose_prune", [](SlamConfig& c) { c.pose_prune = c.pose_cutoff; }},
       {"motion", [](SlamConfig& c) { c.motion_xy_per_m = -0.1; }},
       {"motion", [](SlamConfig& c) { c.motion_theta0 = std::numeric_limits<double>::infinity(); }},
       {"seps_bits", [](SlamConfig& c) { c.seps_bits = 9; }},
@@ -954,6 +961,50 @@ TEST(SlamLocalization, EstimateMovesTowardTheTruePoseInDouble) {
 
 TEST(SlamLocalization, EstimateMovesTowardTheTruePoseInInteger) {
   expect_localization_moves_toward_the_truth<IndexProbabilities>("integer");
+}
+
+// A localization drops the poses it leaves below pose_prune, and only those: the same scans
+// without pruning give the same grid on every kept pose (bit for bit) and something below the
+// threshold on every dropped one.
+template <class Pr>
+void expect_localization_prunes_only_negligible_poses(const char* name) {
+  const World world = room_with_pillar();
+  SlamConfig pruned = localization_config();
+  pruned.pose_prune = 1e-6;
+  SlamConfig kept = pruned;
+  kept.pose_prune = 0.0;
+  const Pose2 robot{-0.4, 0.3, 0.2};
+  Log log;
+  log.scans.push_back(make_scan(world, robot, robot, 0.0, 360));
+  log.scans.push_back(make_scan(world, compose(robot, {0.04, -0.03, 0.0175}), robot, 0.1, 360));
+  const std::vector<SlamScan> scans = quantize(log, pruned);
+  const auto run = [&](const SlamConfig& config) {
+    const SlamSetup setup = make_slam_setup(config, log.scans[0], 0.0);
+    GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
+    for (const SlamScan& scan : scans) slam.process(scan);
+    return slam;
+  };
+  const GridSlam<Pr> with = run(pruned), without = run(kept);
+  ASSERT_EQ(with.localizations(), 1u);
+  std::size_t dropped = 0;
+  for (std::size_t q = 0; q < with.pose_grid().size(); ++q) {
+    const double p = probability_of(without, without.pose_grid()[q]);
+    if (with.probabilities().is_zero(with.pose_grid()[q])) {
+      dropped += p > 0.0;
+      EXPECT_LT(p, 1e-6) << name << " pose " << q;
+    } else {
+      EXPECT_EQ(with.pose_grid()[q], without.pose_grid()[q]) << name << " pose " << q;
+    }
+  }
+  EXPECT_GT(dropped, 0u) << name;
+}
+
+TEST(SlamLocalization, PruningDropsOnlyPosesBelowTheThresholdInDouble) {
+  expect_localization_prunes_only_negligible_poses<DoubleProbabilities>("double");
+}
+
+TEST(SlamLocalization, PruningDropsOnlyPosesBelowTheThresholdInInteger) {
+  expect_localization_prunes_only_negligible_poses<IndexProbabilities>("integer");
 }
 
 // ---------------------------------------------------------------------------------------------

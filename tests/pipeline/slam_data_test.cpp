@@ -3,11 +3,15 @@
 // the README, and these floors sit a little above it so that a regression fails.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
+#include "golden/simulator.hpp"
 #include "golden/slam_run.hpp"
 #include "golden/trajectory_metrics.hpp"
 #include "host/log_io.hpp"
+#include "host/map_io.hpp"
 
 namespace intgrid {
 namespace {
@@ -34,12 +38,12 @@ TEST(SlamData, RealLogTrajectoryErrorFloorAndArithmeticsAgree) {
   EXPECT_EQ(integer.ate.matched, 99u);
   EXPECT_EQ(integer.run.localizations, 224u);
   EXPECT_EQ(integer.run.mappings, 225u);
-  // Measured 0.236 m (integer) and 0.298 m (double); raw odometry is 3.66 m. The run is
-  // sensitive to small changes in either arithmetic (README), so the arithmetics are held to
-  // one side only: U_gamma must not cost accuracy against double.
-  EXPECT_LT(integer.ate.rmse, 0.30);
-  EXPECT_LT(floating.ate.rmse, 0.40);
-  EXPECT_LT(integer.ate.rmse, 1.1 * floating.ate.rmse);
+  // Measured 0.220 m (integer) and 0.214 m (double); raw odometry is 3.66 m. The issue holds
+  // the two arithmetics within 10% of each other.
+  EXPECT_LT(integer.ate.rmse, 0.25);
+  EXPECT_LT(floating.ate.rmse, 0.25);
+  EXPECT_LE(std::abs(integer.ate.rmse - floating.ate.rmse),
+            0.1 * std::max(integer.ate.rmse, floating.ate.rmse));
   // The map: the courtyard's walls are there, and most of what the laser crossed is empty.
   std::size_t occupied = 0, empty = 0;
   for (const std::int8_t n : integer.run.map.cells) {
@@ -48,6 +52,33 @@ TEST(SlamData, RealLogTrajectoryErrorFloorAndArithmeticsAgree) {
   }
   EXPECT_GT(occupied, 2000u);
   EXPECT_GT(empty, 20 * occupied);
+}
+
+// The courtyard simulated along the reference trajectory (99 scans some 0.6 s apart, a metre and
+// up to 10 degrees a step), with the simulator's default odometry noise: its heading misses by
+// 2.9 degrees a step (standard deviation), past the motion model's 3 sigma at times. The pose
+// grid's heading window must hold the true heading anyway, or the map turns with the error.
+// Measured 0.100, 0.275 and 0.106 m (seeds 1 to 3); with the former +-3.5 degree window (21
+// headings) 0.850, 0.390 and 0.264 m. Integer only: the real-log test compares the arithmetics.
+TEST(SlamData, SimulatedCourtyardKeepsTheTrueHeadingWhenOdometryMissesByDegrees) {
+  const RosMap world = read_ros_map(kData + "/malaga_telecom_map.yaml");
+  const Log reference = read_log(kData + "/malaga_telecom_loop_reference.log");
+  SimulationConfig sim;
+  for (const Scan& scan : reference.scans) sim.true_poses.push_back(scan.robot);
+  sim.sensor = lidar_sensor(361, std::numbers::pi, 30.0);
+  sim.sensor.occupied_threshold = world.occupied_thresh;
+  double total = 0.0;
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    const Simulation run = simulate(world.grid, sim, seed);
+    const std::vector<TimedPose> truth = scan_poses(run.truth);
+    EXPECT_GT(absolute_trajectory_error(scan_poses(run.log), truth).rmse, 1.0) << "seed " << seed;
+    const double ate = absolute_trajectory_error(
+                           run_slam(run.log, SlamConfig{}, Arithmetic::integer).trajectory, truth)
+                           .rmse;
+    EXPECT_LT(ate, 0.35) << "seed " << seed;
+    total += ate;
+  }
+  EXPECT_LT(total / 3.0, 0.2);
 }
 
 TEST(SlamData, OdometryAloneIsFarFromTheReference) {
