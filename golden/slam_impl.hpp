@@ -288,7 +288,7 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
         P& pose = pi_[pose_index(i, j, k)];
         if (prob_.is_zero(pose)) continue;
         const std::int8_t* base = cells + map_index(ox_ + i, oy_ + j);
-        P product = prob_.one();
+        typename Pr::Joint joint;
         for (std::uint32_t r = heading_rays_[static_cast<std::size_t>(k)];
              r < heading_rays_[static_cast<std::size_t>(k) + 1]; ++r) {
           const Ray& ray = scan_rays_[r];
@@ -301,9 +301,9 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
                 sum, prob_.mul(prob_.mul(ray_likelihoods_[e], prob_.occupied(n)), empty_before));
             empty_before = prob_.mul(empty_before, prob_.empty(n));
           }
-          product = prob_.mul(product, prob_.add(sum, prob_.floor));
+          prob_.multiply_into(joint, prob_.add(sum, prob_.floor));
         }
-        pose = prob_.mul(pose, prob_.root(product, config.tempering));
+        pose = prob_.mul(pose, prob_.root_of(joint, config.tempering));
       }
   normalize();
   for (P& p : pi_)

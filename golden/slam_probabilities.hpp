@@ -32,6 +32,23 @@ struct DoubleProbabilities {
   P complement(P a) const { return a < 1.0 ? 1.0 - a : 0.0; }
   bool is_zero(P a) const { return !(a > 0.0); }
   P root(P a, int k) const { return k == 1 ? a : std::pow(a, 1.0 / k); }
+  // A scan's joint likelihood, value * 2^exponent: the product of many beams can pass below
+  // the smallest double before the tempering root brings it back.
+  struct Joint {
+    double value = 1.0;
+    int exponent = 0;
+  };
+  void multiply_into(Joint& j, P a) const {
+    j.value *= a;
+    if (j.value < 0x1p-1000) {  // only then, so that products above it round as plain ones
+      j.value *= 0x1p1000;
+      j.exponent -= 1000;
+    }
+  }
+  P root_of(const Joint& j, int k) const {
+    const P r = root(j.value, k);
+    return j.exponent == 0 ? r : r * std::exp2(static_cast<double>(j.exponent) / k);
+  }
   bool below_cutoff(P a) const { return a < cutoff; }
   bool below_prune(P a) const { return a < prune; }
   bool more_probable(P a, P b) const { return a > b; }
@@ -78,6 +95,19 @@ struct IndexProbabilities {
   P complement(P a) const { return u.complement(a); }
   bool is_zero(P a) const { return u.is_zero(a); }
   P root(P a, int k) const { return u.is_zero(a) ? a : a / k; }
+  // A scan's joint likelihood: the sum of its beams' indices in 64 bits, saturated only after
+  // the tempering root, as the product of many beams passes the smallest index.
+  struct Joint {
+    std::int64_t sum = 0;
+    bool zero = false;
+  };
+  void multiply_into(Joint& j, P a) const {
+    if (u.is_zero(a))
+      j.zero = true;
+    else
+      j.sum += a;
+  }
+  P root_of(const Joint& j, int k) const { return j.zero ? u.zero() : u.saturate(j.sum / k); }
   bool below_cutoff(P a) const { return a > cutoff; }
   bool below_prune(P a) const { return a > prune; }
   bool more_probable(P a, P b) const { return a < b; }

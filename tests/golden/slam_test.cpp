@@ -963,6 +963,55 @@ TEST(SlamLocalization, EstimateMovesTowardTheTruePoseInInteger) {
   expect_localization_moves_toward_the_truth<IndexProbabilities>("integer");
 }
 
+// A scan's joint likelihood, raised to 1 / tempering, against the log-domain oracle
+// exp(sum ln p / k): 2000 beams of 1e-3 to 1 pass far below the smallest double (1e-308) and the
+// smallest 16-bit U_gamma index (2^-2048), which a running product of them would reach and keep.
+template <class Pr>
+void expect_joint_likelihood_survives_underflow(const char* name) {
+  SlamConfig config = small_config();
+  const Log log = [] {
+    Log l;
+    l.scans.push_back(make_scan(room_with_pillar(), {}, {}, 0.0, 90));
+    return l;
+  }();
+  const SlamSetup setup = make_slam_setup(config, log.scans[0], 0.0);
+  const Pr pr = make_probabilities<Pr>(setup);
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(-3.0, 0.0);  // log10 p
+  typename Pr::Joint joint;
+  double log_sum = 0.0;
+  for (int beam = 0; beam < 2000; ++beam) {
+    const double p = std::pow(10.0, uniform(random));
+    if constexpr (std::is_same_v<Pr, IndexProbabilities>) {
+      const UIndex i = pr.u.from_probability(p);
+      pr.multiply_into(joint, i);
+      log_sum += pr.u.to_log(i);  // the index's own value: the oracle sums what was added
+    } else {
+      pr.multiply_into(joint, p);
+      log_sum += std::log(p);
+    }
+  }
+  ASSERT_LT(log_sum, -2000.0) << name;  // below both arithmetics' smallest probability
+  for (const int k : {12, 20, 40}) {    // roots a double holds: ln of its smallest is -744
+    const typename Pr::P root = pr.root_of(joint, k);
+    ASSERT_FALSE(pr.is_zero(root)) << name << " k " << k;
+    if constexpr (std::is_same_v<Pr, IndexProbabilities>)
+      // Truncating the index sum by k: at most one step, ln(1/gamma).
+      EXPECT_NEAR(pr.u.to_log(root), log_sum / k, std::log(2.0) / 16.0 + 1e-9)
+          << name << " k " << k;
+    else
+      EXPECT_NEAR(std::log(root), log_sum / k, 1e-9 * std::abs(log_sum)) << name << " k " << k;
+  }
+}
+
+TEST(SlamLocalization, JointLikelihoodOfManyBeamsSurvivesUnderflowInDouble) {
+  expect_joint_likelihood_survives_underflow<DoubleProbabilities>("double");
+}
+
+TEST(SlamLocalization, JointLikelihoodOfManyBeamsSurvivesUnderflowInInteger) {
+  expect_joint_likelihood_survives_underflow<IndexProbabilities>("integer");
+}
+
 // A localization drops the poses it leaves below pose_prune, and only those: the same scans
 // without pruning give the same grid on every kept pose (bit for bit) and something below the
 // threshold on every dropped one.
