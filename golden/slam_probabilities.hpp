@@ -31,7 +31,6 @@ struct DoubleProbabilities {
   P add(P a, P b) const { return a + b; }
   P complement(P a) const { return a < 1.0 ? 1.0 - a : 0.0; }
   bool is_zero(P a) const { return !(a > 0.0); }
-  P root(P a, int k) const { return k == 1 ? a : std::pow(a, 1.0 / k); }
   // A scan's joint likelihood, value * 2^exponent: the product of many beams can pass below
   // the smallest double before the tempering root brings it back.
   struct Joint {
@@ -45,8 +44,9 @@ struct DoubleProbabilities {
       j.exponent -= 1000;
     }
   }
+  // The joint likelihood to the power 1 / k.
   P root_of(const Joint& j, int k) const {
-    const P r = root(j.value, k);
+    const P r = k == 1 ? j.value : std::pow(j.value, 1.0 / k);
     return j.exponent == 0 ? r : r * std::exp2(static_cast<double>(j.exponent) / k);
   }
   bool below_cutoff(P a) const { return a < cutoff; }
@@ -94,7 +94,6 @@ struct IndexProbabilities {
   P add(P a, P b) const { return u.add(a, b); }
   P complement(P a) const { return u.complement(a); }
   bool is_zero(P a) const { return u.is_zero(a); }
-  P root(P a, int k) const { return u.is_zero(a) ? a : a / k; }
   // A scan's joint likelihood: the sum of its beams' indices in 64 bits, saturated only after
   // the tempering root, as the product of many beams passes the smallest index.
   struct Joint {

@@ -879,10 +879,11 @@ struct Localized {
   std::size_t localizations = 0;
 };
 
+// The room mapped from one pose, then read from the pose displaced by `displacement` while the
+// odometry says the robot did not move: the SLAM after those two scans.
 template <class Pr>
-Localized localize_once(const Pose2& displacement) {
+GridSlam<Pr> map_then_localize(const SlamConfig& config, const Pose2& displacement) {
   const World world = room_with_pillar();
-  const SlamConfig config = localization_config();
   const Pose2 robot{-0.4, 0.3, 0.2};
   const Pose2 truth = compose(robot, displacement);
   Log log;
@@ -896,6 +897,12 @@ Localized localize_once(const Pose2& displacement) {
   GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
   slam.process(scans[0]);
   slam.process(scans[1]);
+  return slam;
+}
+
+template <class Pr>
+Localized localize_once(const Pose2& displacement) {
+  const GridSlam<Pr> slam = map_then_localize<Pr>(localization_config(), displacement);
   Localized r;
   r.estimate = pose_of(slam.estimate());
   r.mode = slam.pose_of(mode_of(slam));
@@ -968,7 +975,7 @@ TEST(SlamLocalization, EstimateMovesTowardTheTruePoseInInteger) {
 // smallest 16-bit U_gamma index (2^-2048), which a running product of them would reach and keep.
 template <class Pr>
 void expect_joint_likelihood_survives_underflow(const char* name) {
-  SlamConfig config = small_config();
+  const SlamConfig config = small_config();
   const Log log = [] {
     Log l;
     l.scans.push_back(make_scan(room_with_pillar(), {}, {}, 0.0, 90));
@@ -1017,23 +1024,13 @@ TEST(SlamLocalization, JointLikelihoodOfManyBeamsSurvivesUnderflowInInteger) {
 // threshold on every dropped one.
 template <class Pr>
 void expect_localization_prunes_only_negligible_poses(const char* name) {
-  const World world = room_with_pillar();
   SlamConfig pruned = localization_config();
   pruned.pose_prune = 1e-6;
   SlamConfig kept = pruned;
   kept.pose_prune = 0.0;
-  const Pose2 robot{-0.4, 0.3, 0.2};
-  Log log;
-  log.scans.push_back(make_scan(world, robot, robot, 0.0, 360));
-  log.scans.push_back(make_scan(world, compose(robot, {0.04, -0.03, 0.0175}), robot, 0.1, 360));
-  const std::vector<SlamScan> scans = quantize(log, pruned);
-  const auto run = [&](const SlamConfig& config) {
-    const SlamSetup setup = make_slam_setup(config, log.scans[0], 0.0);
-    GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
-    for (const SlamScan& scan : scans) slam.process(scan);
-    return slam;
-  };
-  const GridSlam<Pr> with = run(pruned), without = run(kept);
+  const Pose2 displacement{0.04, -0.03, 0.0175};
+  const GridSlam<Pr> with = map_then_localize<Pr>(pruned, displacement),
+                     without = map_then_localize<Pr>(kept, displacement);
   ASSERT_EQ(with.localizations(), 1u);
   std::size_t dropped = 0;
   for (std::size_t q = 0; q < with.pose_grid().size(); ++q) {
