@@ -42,9 +42,9 @@ struct SlamConfig {
   double max_range = 30.0;    // readings at or past this are not used (m)
   double pose_cutoff = 0.01;  // mapping skips poses less probable than this
   // A localization drops the poses it leaves less probable than this, so that the next one
-  // weighs the poses the motion model carries the rest to, not the whole window. Low enough
-  // that a pose it drops is never one a later scan would have revived: at 1e-20 the real log's
-  // double run already changes.
+  // weighs the poses the motion model carries the rest to, not the whole window. Low, as the
+  // far tail is what recovers from an odometry glitch: at 1e-20 the real log's double run
+  // already changes (README).
   double pose_prune = 1e-40;
   // Spread of the motion model: sigma_xy = xy0 + xy_per_m |translation| + xy_per_rad |rotation|,
   // sigma_theta = theta0 + theta_per_m |translation| + theta_per_rad |rotation|.
