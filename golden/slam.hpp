@@ -37,8 +37,11 @@ struct SlamConfig {
   double likelihood_floor = 1e-3;  // p(z | x, M) for readings the map cannot explain
   int beams = 90;                  // readings a localization uses, spread evenly over the scan
   // The localization multiplies Pi by the beams' likelihood raised to 1 / tempering: the beams
-  // of one scan are not independent, and treating them so makes Pi a single cell.
-  int tempering = 3;
+  // of one scan are not independent (those on one wall share its error in the map), and treating
+  // them so collapses Pi onto one cell, whose mean then carries the lattice's rounding. 16 is the
+  // smallest tempering at which the bundled real log's E(sigma) reaches that rounding,
+  // cell sqrt(2/12) (41 mm at 10 cm), in both arithmetics (README).
+  int tempering = 16;
   double max_range = 30.0;    // readings at or past this are not used (m)
   double pose_cutoff = 0.01;  // mapping skips poses less probable than this
   // A localization drops the poses it leaves less probable than this, so that the next one
