@@ -14,20 +14,26 @@
 #include <span>
 #include <vector>
 
-#include "golden/global_localization.hpp"
-#include "golden/grid.hpp"
-#include "golden/ism_kernel.hpp"
-#include "golden/mapping.hpp"
-#include "golden/narrow_ism.hpp"
-#include "golden/resolution.hpp"
-#include "golden/scan_insertion.hpp"
-#include "golden/sectoral_ism.hpp"
-#include "golden/sensor_model.hpp"
-#include "golden/seps.hpp"
-#include "golden/simulator.hpp"
-#include "golden/types.hpp"
-#include "golden/ugamma.hpp"
-#include "host/log_io.hpp"
+#include "intgrid/core/grid.hpp"
+#include "intgrid/core/mapping.hpp"
+#include "intgrid/core/narrow_ism.hpp"
+#include "intgrid/core/resolution.hpp"
+#include "intgrid/core/scan_insertion.hpp"
+#include "intgrid/core/sectoral_ism.hpp"
+#include "intgrid/core/sensor_model.hpp"
+#include "intgrid/core/seps.hpp"
+#include "intgrid/core/types.hpp"
+#include "intgrid/core/ugamma.hpp"
+#include "intgrid/io/log_io.hpp"
+#include "intgrid/kernel/ism_kernel.hpp"
+#include "intgrid/localization/global_localization.hpp"
+#include "intgrid/simulation/simulator.hpp"
+
+using namespace intgrid::core;
+using namespace intgrid::kernel;
+using namespace intgrid::localization;
+using namespace intgrid::simulation;
+using namespace intgrid::io;
 
 namespace {
 
@@ -255,7 +261,7 @@ void BM_ScanInsertion_DoubleBayes(benchmark::State& state) {
 BENCHMARK(BM_ScanInsertion_DoubleBayes)->Unit(benchmark::kMillisecond);
 
 // ---------------------------------------------------------------------------
-// 4. U_gamma (ALGORITHMS.md 5, default 16 bits, 16 steps per halving): sums and fusions of
+// 4. U_gamma (docs/algorithms.md 5, default 16 bits, 16 steps per halving): sums and fusions of
 // 4096 probabilities as integer exponents, against the same work in double.
 
 constexpr std::size_t kUGammaTerms = 4096;
@@ -383,13 +389,13 @@ void BM_Double_Fuse(benchmark::State& state) {
 BENCHMARK(BM_Double_Fuse);
 
 // ---------------------------------------------------------------------------
-// Global localization (ALGORITHMS.md 7): the time of one reading on pose grids of N = 10^4..10^7
-// cells (0.2 m x 64 headings over square rooms of growing side, 10 cm map cells, an outer wall and
-// random 0.4-1.2 m boxes covering about 8% of the floor, fixed seed), for the pose grid (claims
-// table + dense form, integer), its walk form, and Markov localization (Gaussian beam model,
-// double, one exp per candidate and a normalization). 60 readings simulated from one free pose
-// (LiDAR all round, 8 m, 3 cm noise), used in turn. Markov's belief restarts from uniform every 8
-// readings and the pose grid's sum every 4096 (outside the timing), so no denormals and no
+// Global localization (docs/algorithms.md 7): the time of one reading on pose grids of N =
+// 10^4..10^7 cells (0.2 m x 64 headings over square rooms of growing side, 10 cm map cells, an
+// outer wall and random 0.4-1.2 m boxes covering about 8% of the floor, fixed seed), for the pose
+// grid (claims table + dense form, integer), its walk form, and Markov localization (Gaussian beam
+// model, double, one exp per candidate and a normalization). 60 readings simulated from one free
+// pose (LiDAR all round, 8 m, 3 cm noise), used in turn. Markov's belief restarts from uniform
+// every 8 readings and the pose grid's sum every 4096 (outside the timing), so no denormals and no
 // overflow.
 
 struct GlobalLocBench {

@@ -1,4 +1,4 @@
-// Synthesizable C++ of the sectoral ISM kernel (HARDWARE.md, kernel 2): the S_eps index of
+// Synthesizable C++ of the sectoral ISM kernel (docs/hardware.md, kernel 2): the S_eps index of
 // every polar cell for one reading, bit for bit golden's ism_kernel_indices
 // (golden/ism_kernel.hpp). The same operations in the same order as golden's
 // sectoral_ism_rings with KernelLogArith: per ring, the class densities, then for each

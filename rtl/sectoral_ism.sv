@@ -1,4 +1,4 @@
-// Kernel 2 of HARDWARE.md: the sectoral inverse sensor model in integer arithmetic. One
+// Kernel 2 of docs/hardware.md: the sectoral inverse sensor model in integer arithmetic. One
 // reading z per input beat (READING_FRAC fractional bits, in cells); per reading, the S_eps
 // index of every polar cell, one cell per output beat, ring-major (cell (r, a) at
 // (r - 1) * BINS + a), y_last on the reading's last cell. Bit for bit golden's

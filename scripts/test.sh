@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Set up, build and run every test with a CMake preset (default or asan).
+# Set up, build and run every test: the full preset (host, hardware, embedded, Python, the
+# install-and-consume test), or `asan` for the same under ASan + UBSan.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-preset="${1:-default}"
+preset="${1:-full}"
 bash scripts/build.sh "$preset"
 ctest --preset "$preset" -j "$(nproc)"

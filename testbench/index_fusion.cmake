@@ -33,7 +33,7 @@ endif()
 # --- Plain C++: the HLS function against golden, and the checker's self-test ------------------
 add_executable(index_fusion_cpp_test index_fusion_hls_test.cpp index_fusion_hls_synth.cpp
                                      index_fusion_checker_test.cpp)
-target_link_libraries(index_fusion_cpp_test PRIVATE intgrid_hls intgrid_golden GTest::gtest_main)
+target_link_libraries(index_fusion_cpp_test PRIVATE intgrid_hls intgrid_core intgrid_kernel GTest::gtest_main)
 # index_fusion_hls_synth.cpp sees the header as an HLS tool does, pragmas expanded.
 set_source_files_properties(index_fusion_hls_synth.cpp PROPERTIES
   COMPILE_DEFINITIONS __SYNTHESIS__ COMPILE_OPTIONS -Wno-unknown-pragmas)
@@ -44,7 +44,7 @@ gtest_discover_tests(index_fusion_cpp_test PROPERTIES LABELS hw DISCOVERY_TIMEOU
 # every lane), then the other widths on buses that make lanes straddle 32- and 64-bit words.
 set(INTGRID_INDEX_FUSION_CONFIGS 8:1 8:2 8:4 8:8 8:16 4:16 6:16 10:7 12:8 16:1 16:16)
 add_executable(index_fusion_rtl_test index_fusion_rtl_test.cpp)
-target_link_libraries(index_fusion_rtl_test PRIVATE intgrid_golden GTest::gtest)
+target_link_libraries(index_fusion_rtl_test PRIVATE intgrid_core intgrid_kernel GTest::gtest)
 target_include_directories(index_fusion_rtl_test PRIVATE ${PROJECT_SOURCE_DIR}
                                                          ${CMAKE_CURRENT_BINARY_DIR})
 # Verilator's runtime headers, as system headers: the project's -Wconversion is not for them.
@@ -79,7 +79,7 @@ gtest_discover_tests(index_fusion_rtl_test PROPERTIES LABELS hw DISCOVERY_TIMEOU
 
 # --- The SystemC co-simulation ------------------------------------------------------------------
 add_executable(index_fusion_cosim index_fusion_cosim.cpp)
-target_link_libraries(index_fusion_cosim PRIVATE intgrid_systemc intgrid_golden)
+target_link_libraries(index_fusion_cosim PRIVATE intgrid_systemc intgrid_core intgrid_kernel)
 target_include_directories(index_fusion_cosim PRIVATE ${PROJECT_SOURCE_DIR})
 target_include_directories(index_fusion_cosim SYSTEM PRIVATE ${VERILATOR_ROOT}/include
                                                              ${VERILATOR_ROOT}/include/vltstd)

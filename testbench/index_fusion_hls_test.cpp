@@ -13,9 +13,11 @@
 
 #include <gtest/gtest.h>
 
-#include "golden/seps.hpp"
+#include "intgrid/core/seps.hpp"
 #include "testbench/index_fusion_hls_synth.hpp"
 #include "testbench/index_fusion_tb.hpp"
+
+using namespace intgrid::core;
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "golden/seps.hpp"
+#include "intgrid/core/seps.hpp"
 #include "testbench/stream_driver.hpp"
 
 namespace intgrid::tb {

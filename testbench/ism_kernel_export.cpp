@@ -17,12 +17,15 @@
 #include <utility>
 #include <vector>
 
-#include "testbench/sectoral_ism_configs.hpp"
+#include "intgrid/kernel/hardware_configs.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::kernel;
 
 namespace {
 
 using namespace intgrid;
-using namespace intgrid::hw;
 
 void write_if_changed(const std::filesystem::path& path, const std::string& text) {
   {

@@ -24,7 +24,7 @@ set(_ism_quiet OPT_FAST -w OPT_SLOW -w OPT_GLOBAL -w)
 
 # --- Tables, generated at build time from golden ---------------------------------------------
 add_executable(ism_kernel_export ism_kernel_export.cpp)
-target_link_libraries(ism_kernel_export PRIVATE intgrid_golden)
+target_link_libraries(ism_kernel_export PRIVATE intgrid_core intgrid_kernel)
 target_include_directories(ism_kernel_export PRIVATE ${PROJECT_SOURCE_DIR})
 set(_ism_tables "")
 foreach(_cfg ${_ism_configs})
@@ -66,7 +66,7 @@ endif()
 
 # --- Plain C++: the HLS function against golden ------------------------------------------------
 add_executable(sectoral_ism_hls_test sectoral_ism_hls_test.cpp sectoral_ism_hls_synth.cpp)
-target_link_libraries(sectoral_ism_hls_test PRIVATE intgrid_hls intgrid_golden GTest::gtest_main)
+target_link_libraries(sectoral_ism_hls_test PRIVATE intgrid_hls intgrid_core intgrid_kernel GTest::gtest_main)
 target_include_directories(sectoral_ism_hls_test PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
 add_dependencies(sectoral_ism_hls_test sectoral_ism_tables)
 # sectoral_ism_hls_synth.cpp sees the header as an HLS tool does, pragmas expanded.
@@ -93,7 +93,7 @@ endforeach()
 # Users of the models: Verilator's headers as system headers (the project's -Wconversion is not
 # for them), and the models' trace support.
 function(_ism_use_vmodels target)
-  target_link_libraries(${target} PRIVATE sectoral_ism_vmodels intgrid_golden)
+  target_link_libraries(${target} PRIVATE sectoral_ism_vmodels intgrid_core intgrid_kernel)
   target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
   target_include_directories(${target} SYSTEM PRIVATE ${VERILATOR_ROOT}/include
                                                       ${VERILATOR_ROOT}/include/vltstd ${_ism_vdirs})
@@ -113,7 +113,7 @@ set_tests_properties(sectoral_ism_report PROPERTIES LABELS hw)
 # --- The SystemC co-simulation ------------------------------------------------------------------
 add_executable(sectoral_ism_cosim sectoral_ism_cosim.cpp)
 add_dependencies(sectoral_ism_cosim sectoral_ism_tables)
-target_link_libraries(sectoral_ism_cosim PRIVATE intgrid_systemc intgrid_golden)
+target_link_libraries(sectoral_ism_cosim PRIVATE intgrid_systemc intgrid_core intgrid_kernel)
 target_include_directories(sectoral_ism_cosim PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
 target_include_directories(sectoral_ism_cosim SYSTEM PRIVATE ${VERILATOR_ROOT}/include
                                                              ${VERILATOR_ROOT}/include/vltstd)

@@ -22,17 +22,20 @@
 
 #include "Vsectoral_ism_sc_cone12.h"
 #include "Vsectoral_ism_sc_cone16.h"
-#include "golden/ism_kernel.hpp"
+#include "intgrid/kernel/hardware_configs.hpp"
+#include "intgrid/kernel/ism_kernel.hpp"
 #include "sectoral_ism_cone12_config.hpp"
 #include "sectoral_ism_cone16_config.hpp"
 #include "systemc/sectoral_ism_module.hpp"
-#include "testbench/sectoral_ism_configs.hpp"
 #include "testbench/sectoral_ism_rtl_bench.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::kernel;
 
 namespace {
 
 using namespace intgrid;
-using namespace intgrid::hw;
 using sc_core::sc_signal;
 
 struct Outputs {

@@ -10,11 +10,15 @@
 #include <random>
 #include <vector>
 
-#include "golden/ism_kernel.hpp"
 #include "hls/sectoral_ism.hpp"
+#include "intgrid/kernel/hardware_configs.hpp"
+#include "intgrid/kernel/ism_kernel.hpp"
 #include "sectoral_ism_cone12_config.hpp"
 #include "sectoral_ism_cone16_config.hpp"
-#include "testbench/sectoral_ism_configs.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::kernel;
 
 namespace intgrid::hw {
 namespace {

@@ -18,13 +18,16 @@
 
 #include "Vsectoral_ism_cone12.h"
 #include "Vsectoral_ism_cone16.h"
-#include "testbench/sectoral_ism_configs.hpp"
+#include "intgrid/kernel/hardware_configs.hpp"
 #include "testbench/sectoral_ism_rtl_bench.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::kernel;
 
 namespace {
 
 using namespace intgrid;
-using namespace intgrid::hw;
 
 struct Stats {
   std::uint64_t min = 0, max = 0;

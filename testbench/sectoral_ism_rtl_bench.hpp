@@ -27,7 +27,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "golden/ism_kernel.hpp"
+#include "intgrid/kernel/ism_kernel.hpp"
 
 namespace intgrid::hw {
 

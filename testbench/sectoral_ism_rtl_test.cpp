@@ -22,11 +22,15 @@
 #include "Vsectoral_ism_cone12.h"
 #include "Vsectoral_ism_cone16.h"
 #include "Vsectoral_ism_cone16_bug.h"
+#include "intgrid/kernel/hardware_configs.hpp"
 #include "sectoral_ism_cone12_config.hpp"
 #include "sectoral_ism_cone16_config.hpp"
 #include "systemc/sectoral_ism_timing.hpp"
-#include "testbench/sectoral_ism_configs.hpp"
 #include "testbench/sectoral_ism_rtl_bench.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::kernel;
 
 namespace intgrid::hw {
 namespace {

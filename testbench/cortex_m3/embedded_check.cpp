@@ -15,9 +15,13 @@
 #include <string>
 #include <vector>
 
-#include "host/atomic_file.hpp"
-#include "host/text_io.hpp"
+#include "intgrid/io/atomic_file.hpp"
+#include "intgrid/io/text_io.hpp"
 #include "testbench/cortex_m3/workload.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::io;
 
 namespace {
 

@@ -9,13 +9,17 @@
 #include <sstream>
 #include <string>
 
-#include "golden/ray_insertion.hpp"
-#include "golden/slam_run.hpp"
-#include "host/atomic_file.hpp"
-#include "host/log_io.hpp"
-#include "host/map_io.hpp"
-#include "host/text_io.hpp"
+#include "intgrid/core/ray_insertion.hpp"
+#include "intgrid/io/atomic_file.hpp"
+#include "intgrid/io/log_io.hpp"
+#include "intgrid/io/map_io.hpp"
+#include "intgrid/io/text_io.hpp"
+#include "intgrid/slam/log_run.hpp"
 #include "testbench/cortex_m3/workload_parameters.hpp"
+
+using namespace intgrid::core;
+using namespace intgrid::slam;
+using namespace intgrid::io;
 
 namespace {
 

@@ -8,13 +8,17 @@
 #include <vector>
 
 #include "embedded_inputs.hpp"
-#include "golden/global_localization.hpp"
-#include "golden/ray_insertion.hpp"
-#include "golden/resolution.hpp"
-#include "golden/seps.hpp"
-#include "golden/slam.hpp"
-#include "golden/slam_probabilities.hpp"
+#include "intgrid/core/ray_insertion.hpp"
+#include "intgrid/core/resolution.hpp"
+#include "intgrid/core/seps.hpp"
+#include "intgrid/localization/global_localization.hpp"
+#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/probabilities.hpp"
 #include "testbench/cortex_m3/workload_parameters.hpp"
+
+using namespace intgrid::core;
+using namespace intgrid::slam;
+using namespace intgrid::localization;
 
 namespace intgrid::embedded {
 namespace {

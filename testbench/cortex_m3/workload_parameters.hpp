@@ -3,9 +3,9 @@
 
 #include <cstdint>
 
-#include "golden/resolution.hpp"
-#include "golden/sensor_model.hpp"
-#include "golden/seps.hpp"
+#include "intgrid/core/resolution.hpp"
+#include "intgrid/core/sensor_model.hpp"
+#include "intgrid/core/seps.hpp"
 
 namespace intgrid::embedded {
 

@@ -300,11 +300,11 @@ TEST_F(Cli, LogWithoutAnyValidReadingIsAnError) {
                "no scan holds a valid reading");
 }
 
-// The demo prints the hardware kernels' summary from <data>/../docs/hardware_report.json and
+// The demo prints the hardware kernels' summary from <data>/../hardware_report.json and
 // puts it in summary.json under "hardware"; without the report it prints how to make one.
 class CliDemo : public Cli {
  protected:
-  // A copy of the bundled data (links) in dir_/data, so that dir_/docs can hold a report.
+  // A copy of the bundled data (links) in dir_/data, so that dir_ can hold a report beside it.
   fs::path data() {
     const fs::path d = dir_ / "data";
     fs::create_directories(d);
@@ -321,8 +321,7 @@ class CliDemo : public Cli {
 
 TEST_F(CliDemo, PrintsTheKernelsSummaryFromTheHardwareReport) {
   const fs::path d = data();
-  fs::create_directories(dir_ / "docs");
-  std::ofstream(dir_ / "docs" / "hardware_report.json") << R"({"date": "2026-11-25", "summary": [
+  std::ofstream(dir_ / "hardware_report.json") << R"({"date": "2026-11-25", "summary": [
     {"kernel": "index_fusion", "configuration": "B=8 LANES=1", "cycles_per_cell": 1.0,
      "cycles_per_cell_backpressure": 2.0, "latency_cycles": 1, "latency_cycles_backpressure": 3,
      "lut4": 44, "dff": 20, "bram": 0, "fmax_mhz": 164.0, "target_mhz": 80, "target_met": true}]})";

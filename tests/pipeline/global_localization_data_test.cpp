@@ -1,5 +1,6 @@
-// Global localization on a map built by a robot (data/malaga_room_map, ALGORITHMS.md 7): simulated
-// scans from random free poses, localized from no prior; and the dense and walk forms on it.
+// Global localization on a map built by a robot (data/malaga_room_map, docs/algorithms.md 7):
+// simulated scans from random free poses, localized from no prior; and the dense and walk forms on
+// it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,10 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "golden/global_localization.hpp"
-#include "golden/global_localization_experiments.hpp"
-#include "golden/simulator.hpp"
-#include "host/map_io.hpp"
+#include "intgrid/experiments/global_localization_trials.hpp"
+#include "intgrid/io/map_io.hpp"
+#include "intgrid/localization/global_localization.hpp"
+#include "intgrid/simulation/simulator.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::localization;
+using namespace intgrid::simulation;
+using namespace intgrid::experiments;
+using namespace intgrid::io;
 
 namespace intgrid {
 namespace {

@@ -2,11 +2,14 @@
 // bundled map built from the same run (data/README.md).
 #include <gtest/gtest.h>
 
-#include "golden/map_compare.hpp"
-#include "golden/mapping.hpp"
-#include "golden/resolution.hpp"
-#include "host/log_io.hpp"
-#include "host/map_io.hpp"
+#include "intgrid/core/map_compare.hpp"
+#include "intgrid/core/mapping.hpp"
+#include "intgrid/core/resolution.hpp"
+#include "intgrid/io/log_io.hpp"
+#include "intgrid/io/map_io.hpp"
+
+using namespace intgrid::core;
+using namespace intgrid::io;
 
 namespace intgrid {
 namespace {

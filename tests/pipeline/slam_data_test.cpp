@@ -7,11 +7,17 @@
 #include <cmath>
 #include <numbers>
 
-#include "golden/simulator.hpp"
-#include "golden/slam_run.hpp"
-#include "golden/trajectory_metrics.hpp"
-#include "host/log_io.hpp"
-#include "host/map_io.hpp"
+#include "intgrid/io/log_io.hpp"
+#include "intgrid/io/map_io.hpp"
+#include "intgrid/simulation/simulator.hpp"
+#include "intgrid/slam/log_run.hpp"
+#include "intgrid/slam/trajectory_metrics.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::slam;
+using namespace intgrid::simulation;
+using namespace intgrid::io;
 
 namespace intgrid {
 namespace {

@@ -1,0 +1,119 @@
+// Scan insertion: one exact narrow ISM per beam of a 2D range scan, range-mapped
+// onto a world grid over the beam's footprint and fused into it, either as
+// probabilities (Bayesian fusion, double) or as S_eps indices (integer addition).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "intgrid/core/footprint.hpp"
+#include "intgrid/core/grid.hpp"
+#include "intgrid/core/sensor_model.hpp"
+#include "intgrid/core/seps.hpp"
+#include "intgrid/core/types.hpp"
+
+namespace intgrid::core {
+
+// Why a reading was or was not inserted.
+enum class RangeClass { valid, zero, not_finite, negative, at_or_over_max };
+RangeClass classify_range(double range, double max_range);
+
+// Counts over every scan inserted so far.
+struct InsertionStats {
+  std::size_t scans = 0;
+  std::size_t readings = 0;
+  std::size_t inserted = 0;
+  std::size_t zero = 0;
+  std::size_t not_finite = 0;
+  std::size_t negative = 0;
+  std::size_t at_or_over_max = 0;
+  std::size_t cells_updated = 0;
+  std::size_t skipped() const { return zero + not_finite + negative + at_or_over_max; }
+};
+
+// How many line-of-sight cells a reading's ISM is computed over: past z + 8
+// sigma(z) the ISM is 1/2 to 1e-14 and carries no information.
+std::size_t ism_cells_for_reading(const GaussianBeamModel& model, double z, double cell);
+
+// Calls beam(z, from, to) for every valid reading of the scan, with the world
+// boundary vectors of its angular footprint, and counts the invalid ones.
+template <class Beam>
+void for_each_valid_beam(const Scan& scan, InsertionStats& stats, Beam&& beam) {
+  const Pose2 sensor = scan.sensor_pose();
+  ++stats.scans;
+  // Boundary j lies between beams j - 1 and j; adjacent beams share it exactly.
+  const bool counter_clockwise = scan.dangle >= 0.0;
+  const auto boundary = [&](std::size_t j) {
+    return unit_vector(sensor.theta + scan.angle0 + (static_cast<double>(j) - 0.5) * scan.dangle);
+  };
+  Vec2 previous = boundary(0);
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    const Vec2 next = boundary(i + 1);
+    const double z = scan.ranges[i];
+    ++stats.readings;
+    switch (classify_range(z, scan.max_range)) {
+      case RangeClass::valid:
+        ++stats.inserted;
+        if (counter_clockwise)
+          beam(z, previous, next);
+        else
+          beam(z, next, previous);
+        break;
+      case RangeClass::zero:
+        ++stats.zero;
+        break;
+      case RangeClass::not_finite:
+        ++stats.not_finite;
+        break;
+      case RangeClass::negative:
+        ++stats.negative;
+        break;
+      case RangeClass::at_or_over_max:
+        ++stats.at_or_over_max;
+        break;
+    }
+    previous = next;
+  }
+}
+
+// Double-precision insertion: the exact ISM of each reading, fused by Bayes' rule.
+void insert_scan(ProbabilityGrid& grid, const Scan& scan, const GaussianBeamModel& model,
+                 InsertionStats& stats);
+
+// How far one reading may push a cell toward empty. The exact ISM calls the
+// cells before z empty with near certainty, so one grazing or misaligned beam
+// would erase a wall that many beams saw; bounding each reading's empty indices
+// by its own strongest occupied index (docs/algorithms.md 7, rule 2) weighs a pass
+// through a cell like one hit on it.
+enum class VetoBound { none, strongest_claim };
+
+// Integer insertion. The exact ISM of each reading is quantized (conservatively)
+// to S_eps indices once per reading value, on a grid of z_step metres (1 mm:
+// the resolution of the logs), and then applied by saturating index addition.
+template <class Index>
+class IndexScanInserter {
+ public:
+  IndexScanInserter(const GaussianBeamModel& model, double cell, const SepsCodec& codec,
+                    VetoBound veto = VetoBound::none, double z_step = 0.001);
+
+  // Requires grid resolution == cell.
+  void insert(Grid<Index>& grid, const Scan& scan, InsertionStats& stats);
+  // The indices of line-of-sight cells 1..n for the reading z (rounded to z_step).
+  const std::vector<Index>& beam_indices(double z);
+  const SepsCodec& codec() const { return codec_; }
+
+ private:
+  GaussianBeamModel model_;
+  double cell_;
+  SepsCodec codec_;
+  VetoBound veto_;
+  double z_step_;
+  std::unordered_map<long long, std::vector<Index>> beams_;  // by round(z / z_step)
+};
+
+extern template class IndexScanInserter<std::int8_t>;
+extern template class IndexScanInserter<std::int16_t>;
+
+}  // namespace intgrid::core

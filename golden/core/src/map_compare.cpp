@@ -1,0 +1,49 @@
+#include "intgrid/core/map_compare.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace intgrid::core {
+namespace {
+
+// The share of `from`'s occupied cells whose centre lies within `tolerance` of
+// the centre of an occupied cell of `to`, by a search of the neighbourhood.
+double share_near(const ProbabilityGrid& from, double from_threshold, const ProbabilityGrid& to,
+                  double to_threshold, double tolerance, std::size_t& occupied) {
+  const GridGeometry& g = to.geometry;
+  const int reach = static_cast<int>(std::ceil(tolerance / g.resolution)) + 1;
+  const double tolerance_sq = tolerance * tolerance;
+  std::size_t near = 0;
+  occupied = 0;
+  for (int iy = 0; iy < from.geometry.height; ++iy)
+    for (int ix = 0; ix < from.geometry.width; ++ix) {
+      if (!(from.at(ix, iy) > from_threshold)) continue;
+      ++occupied;
+      const double x = from.geometry.centre_x(ix), y = from.geometry.centre_y(iy);
+      const int cx = g.cell_x(x), cy = g.cell_y(y);
+      bool found = false;
+      for (int jy = cy - reach; jy <= cy + reach && !found; ++jy)
+        for (int jx = cx - reach; jx <= cx + reach && !found; ++jx) {
+          if (!g.contains(jx, jy) || !(to.at(jx, jy) > to_threshold)) continue;
+          const double dx = g.centre_x(jx) - x, dy = g.centre_y(jy) - y;
+          found = dx * dx + dy * dy <= tolerance_sq;
+        }
+      near += found;
+    }
+  return occupied ? static_cast<double>(near) / static_cast<double>(occupied) : 0.0;
+}
+
+}  // namespace
+
+MapAgreement compare_occupied(const ProbabilityGrid& ours, double our_threshold,
+                              const ProbabilityGrid& reference, double reference_threshold,
+                              double tolerance) {
+  MapAgreement a;
+  a.ours_near_reference =
+      share_near(ours, our_threshold, reference, reference_threshold, tolerance, a.ours_occupied);
+  a.reference_near_ours = share_near(reference, reference_threshold, ours, our_threshold, tolerance,
+                                     a.reference_occupied);
+  return a;
+}
+
+}  // namespace intgrid::core

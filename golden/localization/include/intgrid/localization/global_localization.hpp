@@ -1,0 +1,260 @@
+// Global localization with pose occupancy grids (docs/algorithms.md 7, thesis chapter 4), and the
+// baselines a user would pick instead, on the same pose grid and readings.
+//
+// The robot knows the map, not its pose. The pose grid covers the map at pose_res over
+// `headings` heading bins; its cells hold the SENSOR's pose (rule 3): the estimate steps back
+// by the mounting pose to report the robot's. Rays run along a family of parallel digital
+// lines per direction bin (one line through every pose cell, so the lines partition the grid),
+// which makes the forward "first hit from a pose" and the backward "walk from a source" two
+// exact views of one relation: the dense form and the walk form give identical grids.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "intgrid/core/grid.hpp"
+#include "intgrid/core/seps.hpp"
+#include "intgrid/core/types.hpp"
+
+namespace intgrid::localization {
+
+enum class GlobalMethod {
+  pose_grid,         // the pose occupancy grid: S_eps index sums, integer only per reading
+  markov,            // Markov localization, Gaussian beam model, double
+  markov_mixture,    // Markov localization, hit + short + random + max mixture, double
+  likelihood_field,  // Markov localization, likelihood field (ROS AMCL's default), double
+};
+
+struct GlobalLocConfig {
+  double pose_res = 0.2;    // pose-grid step (m); not finer than the map's resolution
+  int headings = 64;        // heading bins, also the rays' direction bins
+  double sigma = 0.03;      // range noise of the readings (m)
+  double max_range = 30.0;  // readings at or past this are not used (m)
+  int seps_bits = 8;        // per-reading index width
+  // Each reading's claims are quantized with its own eps, such that its strongest claim is this
+  // index: with one eps for all, a far reading (sigma_eff grows with the heading step times z)
+  // claims 0 to 2 against a near one's 16, and a pose near any wall outscores the true one.
+  int seps_levels = 16;
+  // A reading's negative claims are bounded by this (rule 2 bounds them by its strongest claim):
+  // a reading cut short or contaminated that runs past the true pose's first hit would otherwise
+  // veto the true pose with the weight of a match.
+  int veto_levels = 8;
+  // Baselines' beam-model weights (Probabilistic Robotics 6.3; AMCL's defaults).
+  // z_hit and lambda_short must be positive, the others non-negative.
+  double z_hit = 0.95, z_short = 0.1, z_max = 0.05, z_rand = 0.05, lambda_short = 0.1;
+};
+
+// Throws std::invalid_argument naming the offending field.
+void check_global_loc_config(const GlobalLocConfig& config);
+
+// One reading in the sensor frame.
+struct RangeReading {
+  double range = 0.0;    // m
+  double bearing = 0.0;  // rad, from the sensor's heading
+};
+
+// The usable readings of a scan (valid for the scan and below max_range), `beams` of them spread
+// evenly over the scan (all when beams <= 0 or beams >= the usable count): usable reading
+// floor(i * usable / beams) for i = 0..beams-1.
+std::vector<RangeReading> readings_of(const core::Scan& scan, int beams, double max_range);
+
+// One reading's claims on the pose grid (rules 1 and 2), built once per reading in floating
+// point; applying them is integer only. A pose with heading bin k reads the reading along direction
+// bin d = (k + shift) mod headings; claim[d][rho] is the S_eps index of a pose whose first hit
+// along d lies rho steps away: the narrow ISM of z on that direction's step with sigma_eff,
+// quantized to the nearest step of the reading's own S_eps scale (lambda = max(logit(the
+// table's Pmax), 1e-9) / seps_levels) and clamped to [-min(n_top[d], veto_levels), n_top[d]]
+// (n_top[d] the largest positive index of the table, 0 if none). rho = 0 (never a candidate's first
+// hit) holds 0; claim[d] ends with one 0, past z plus the ISM's window of 8 sigma_eff, which every
+// rho past the table (or no hit) reads.
+//
+// The same claims in double precision (Score = double, log_odds_claims) hold the log-odds the
+// indices round: n lambda before rounding, bounded alike. They are the floating-point form of the
+// pose grid, kept to measure what the integer arithmetic saves.
+template <class Score>
+struct BasicReadingClaims {
+  int shift = 0;
+  double sigma_eff = 0.0;  // hypot(sigma, pose_res, bin * z), bin = 2 pi / headings (rule 1)
+  std::vector<std::vector<Score>> claim;  // [direction bin][rho]
+  std::vector<Score> n_top;               // [direction bin]
+};
+using ReadingClaims = BasicReadingClaims<std::int32_t>;
+using LogOddsClaims = BasicReadingClaims<double>;
+
+// The class of a pose cell, from the map cells whose centres fall in it.
+enum class PoseCellClass : std::uint8_t {
+  free,      // every one <= free_threshold: a candidate
+  unknown,   // neither: rays pass over it, the robot is not placed on it
+  occupied,  // any one >= occupied_threshold: stops rays (a source)
+};
+
+// The map, prepared once: pose-cell classes, and per direction bin the first-hit distance of
+// every pose cell and each source's free run (what does not depend on the readings).
+//
+// Direction bin d points at angle 2 pi d / headings. Its rays run along a family of parallel
+// digital lines: for an x-major direction (|cos| >= |sin|) the line through pose cell (i, j) is
+// {(i', c + floor(i' m + 1/2))}, c = j - floor(i m + 1/2), with m = tan held in fixed point
+// (slope_fixed(d) / 2^kSlopeBits) so the offsets are exact integers; y-major directions swap x and
+// y (m = cot). The lines partition the pose lattice; one step along a line is one cell along the
+// major axis, step_length(d) = pose_res / max(|cos|, |sin|) metres.
+class LocalizationMap {
+ public:
+  static constexpr int kSlopeBits = 30;
+  // first_hit_steps when the ray leaves the lattice without meeting an occupied cell.
+  static constexpr std::uint16_t kNoHit = 0xFFFF;
+
+  // Throws std::invalid_argument: a pose resolution finer than the map's, a map without any
+  // free pose cell, thresholds outside [0, 1] or free_threshold >= occupied_threshold, a bad
+  // configuration, a lattice of 65535 cells or more along an axis.
+  LocalizationMap(const core::ProbabilityGrid& map, double occupied_threshold,
+                  double free_threshold, const GlobalLocConfig& config);
+
+  const GlobalLocConfig& config() const { return config_; }
+  int width() const { return width_; }  // pose cells in x
+  int height() const { return height_; }
+  int headings() const { return config_.headings; }
+  std::size_t pose_cells() const;       // width * height * headings
+  std::size_t candidate_cells() const;  // free pose cells * headings
+  // The sensor pose at the centre of pose cell (i, j) with heading bin k.
+  core::Pose2 pose_of(int i, int j, int k) const;
+  // Pose cell of element q of a PoseScores vector: q = (k * height + j) * width + i.
+  std::size_t index(int i, int j, int k) const;
+
+  PoseCellClass cell_class(int i, int j) const {
+    return class_[std::size_t(j) * std::size_t(width_) + std::size_t(i)];
+  }
+  bool is_candidate(int i, int j) const { return cell_class(i, j) == PoseCellClass::free; }
+  double heading_bin() const;  // 2 pi / headings (rad)
+
+  // The digital lines of direction bin d.
+  bool x_major(int d) const;
+  int major_sign(int d) const;            // +1 or -1: the rays' way along the major axis
+  std::int64_t slope_fixed(int d) const;  // round(m 2^kSlopeBits), |m| <= 1
+  double step_length(int d) const;        // metres per step
+  // The cells (i, j) of the line through (i, j) along d, in the rays' order.
+  std::vector<std::array<int, 2>> line_through(int i, int j, int d) const;
+  // Steps from free pose cell (i, j) along d to the first occupied cell (>= 1), kNoHit if the ray
+  // leaves the lattice first. Non-candidate cells hold kNoHit.
+  std::uint16_t first_hit_steps(int i, int j, int d) const;
+  // The same for every cell of direction d, element j * width + i.
+  std::span<const std::uint16_t> first_hit_table(int d) const;
+  // Live sources along d: occupied cells with at least one free cell on their run (the cells
+  // before them on their line, back to the previous occupied cell or the lattice's edge).
+  std::size_t live_sources(int d) const;
+  // Distance (m) from (x, y) to the nearest occupied map cell centre (the likelihood field's
+  // distance transform, computed once); infinity outside the map or without occupied cells.
+  double distance_to_occupied(double x, double y) const;
+
+  // sigma_eff of a reading of range z (rule 1).
+  double effective_sigma(double z) const;
+  // The claims of one reading. Throws std::invalid_argument for a range that is not finite and
+  // positive or not below max_range, or a bearing that is not finite.
+  ReadingClaims claims(const RangeReading& reading) const;
+  LogOddsClaims log_odds_claims(const RangeReading& reading) const;
+  // Dense form: pog[q] += claim[d][first_hit_steps] for every candidate q (heading bin k reading
+  // along d = (k + shift) mod headings). pog has pose_cells() elements, laid out as index().
+  // Allocates nothing. Score is std::int32_t or double.
+  template <class Score>
+  void add_reading_dense(const BasicReadingClaims<Score>& claims,
+                         std::span<std::type_identity_t<Score>> pog) const;
+  // Walk form: from every live source along every d, walk back over its run adding claim[d][rho]
+  // to the free cells rho steps before it, until the claims end. The same grid as the dense form.
+  void add_reading_walk(const ReadingClaims& claims, std::span<std::int32_t> pog) const;
+
+ private:
+  struct Source {
+    std::int32_t line = 0;   // c
+    std::int32_t major = 0;  // major-axis coordinate of the source
+    std::int32_t run = 0;    // cells before it on its line, back to an occupied cell or the edge
+  };
+  struct Direction {
+    bool x_major = true;
+    int sign = 1;
+    std::int64_t slope = 0;
+    double step = 0.0;
+    int step_group = 0;                    // directions of one step length share their ISM tables
+    std::vector<std::int32_t> offset;      // floor(u m + 1/2) for u along the major axis
+    std::vector<std::uint16_t> first_hit;  // per xy cell (j * width + i)
+    std::vector<Source> sources;           // live ones
+  };
+
+  GlobalLocConfig config_;
+  int width_ = 0, height_ = 0;
+  double origin_x_ = 0.0, origin_y_ = 0.0;
+  double occupied_threshold_ = 0.0, free_threshold_ = 0.0;
+  std::vector<PoseCellClass> class_;  // per xy cell
+  std::size_t free_cells_ = 0;
+  std::vector<Direction> directions_;
+  std::vector<double> group_step_;  // step length of each step group
+  core::GridGeometry map_geometry_;
+  std::vector<double> occupied_distance_;  // per map cell, metres
+
+  void build_direction(int d);
+  template <class Score>
+  BasicReadingClaims<Score> make_claims(const RangeReading& reading) const;
+};
+
+// Markov localization over the candidates of a map, the baselines (markov, markov_mixture,
+// likelihood_field) in double as a user would write them: each reading multiplies every
+// candidate's belief by p(z | x), one exp per candidate, and normalizes (bel <- eta p(z|x) bel).
+// Beam models read the expected range from the map's first-hit table: first_hit_steps *
+// step_length capped at max_range, max_range with no hit.
+//   markov:           p = N(z; expected, sigma_eff)
+//   markov_mixture:   p = z_hit N(z; expected, sigma_eff) + z_short lambda e^(-lambda z) /
+//                     (1 - e^(-lambda expected)) below expected + z_rand / max_range (+ z_max at
+//                     max_range, which a usable reading never is); the Gaussian is not truncated
+//                     to [0, max_range] (as in ROS AMCL)
+//   likelihood_field: p = z_hit N(d; sigma_eff) + z_rand / max_range, d the distance of the
+//                     reading's endpoint (from the pose cell's centre along heading + bearing, not
+//                     binned) to the nearest occupied map cell, no hit term outside the map
+// N is the normalized Gaussian density and sigma_eff the pose grid's (rule 1).
+class MarkovLocalization {
+ public:
+  // Uniform prior over the candidates, 0 elsewhere. Throws std::invalid_argument for pose_grid.
+  MarkovLocalization(const LocalizationMap& map, GlobalMethod method);
+
+  // Fuses one reading. Returns false, leaving the belief unchanged, when every candidate's
+  // product is 0 in double (the textbook's eta is then undefined). Throws std::invalid_argument
+  // for a range that is not finite and positive or not below max_range, or a bearing that is not
+  // finite.
+  bool update(const RangeReading& reading);
+  // pose_cells() elements laid out as LocalizationMap::index(), 0 on non-candidates, summing to 1.
+  std::span<const double> belief() const { return belief_; }
+  std::size_t dropped() const { return dropped_; }
+
+ private:
+  const LocalizationMap* map_;
+  GlobalMethod method_;
+  std::vector<double> belief_, next_;
+  std::size_t dropped_ = 0;
+};
+
+// Every pose cell's score after all readings, and what made it.
+struct PoseScores {
+  GlobalMethod method = GlobalMethod::pose_grid;
+  std::vector<std::int32_t> index_sum;  // pose_grid: S_eps sums; non-candidates hold INT32_MIN
+  std::vector<double> posterior;        // baselines: normalized; non-candidates hold 0
+};
+
+struct GlobalEstimate {
+  core::Pose2 sensor;  // the pose grid's estimate: best cell (ties: their mean)
+  core::Pose2 robot;   // the sensor pose stepped back by the mounting pose
+  double score = 0.0;  // pose_grid: the best index sum; baselines: the best cell's posterior
+  std::size_t ties = 1;
+  std::size_t readings_used = 0;     // the usable readings (finite, positive, below max_range)
+  std::size_t readings_dropped = 0;  // baselines: readings that zeroed every candidate
+};
+
+// Localizes one set of readings from no prior. Readings that are not finite and positive, at or
+// past max_range, or with a non-finite bearing are not used. `scores`, when given, receives every
+// cell's. The sensor estimate is the best candidate cell's pose (pose_of), the mean of the tied
+// ones (headings by circular mean); robot = compose(sensor, inverse of sensor_mount).
+GlobalEstimate localize_global(const LocalizationMap& map, std::span<const RangeReading> readings,
+                               const core::Pose2& sensor_mount, GlobalMethod method,
+                               PoseScores* scores = nullptr);
+
+}  // namespace intgrid::localization

@@ -1,0 +1,53 @@
+// A SLAM run over a sensor log: the log's doubles turned into the per-scan path's integers,
+// each scan processed, the estimates turned back into world poses.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "intgrid/core/grid.hpp"
+#include "intgrid/core/mapping.hpp"
+#include "intgrid/core/seps.hpp"
+#include "intgrid/core/types.hpp"
+#include "intgrid/slam/grid_slam.hpp"
+
+namespace intgrid::slam {
+
+struct TimedPose {
+  double t = 0.0;
+  core::Pose2 pose;
+};
+
+struct SlamRun {
+  std::vector<TimedPose> trajectory;  // one per scan, in the log's frame
+  std::vector<double> sigma;          // positional standard deviation per scan (m)
+  core::Grid<std::int8_t> map;        // S_eps indices, in the log's frame
+  core::SepsCodec codec{8, 0.1};
+  core::Pose2 frame;  // the SLAM frame (the first scan's robot pose) in the log's frame
+  std::size_t scans = 0;
+  std::size_t localizations = 0;
+  std::size_t mappings = 0;
+  std::size_t skipped_scans = 0;  // no usable reading: only the motion update ran
+  std::size_t readings = 0;
+  std::size_t unusable_readings = 0;  // zero, NaN, negative, at or past max range
+  double mean_sigma() const;          // E(sigma)
+};
+
+// The per-scan path's inputs of every scan of the log: ranges in millimetres, odometry
+// increments from the previous scan's robot pose. Counts readings into run.
+std::vector<SlamScan> quantize_scans(const core::Log& log, const SlamConfig& config, SlamRun& run);
+
+// Throws std::invalid_argument with a clear message for a log SLAM cannot use: no scans, no
+// odometry (no ODOM record and every scan at the same pose), scans whose geometry (beam count,
+// bearings, range limit or sensor mount) differs from the first's.
+void check_slam_log(const core::Log& log);
+
+// Runs the whole log. progress(done, total) after each scan.
+SlamRun run_slam(const core::Log& log, const SlamConfig& config, core::Arithmetic arithmetic,
+                 const core::Progress& progress = {});
+
+// The map's probabilities on an axis-aligned grid of the log's frame (nearest cell).
+core::ProbabilityGrid slam_map_probabilities(const SlamRun& run);
+
+}  // namespace intgrid::slam

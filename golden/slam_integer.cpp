@@ -1,7 +1,0 @@
-// The integer SLAM's per-scan path. CMake builds this file with -mgeneral-regs-only where the
-// compiler has it, so any floating point on this path is a build error.
-#include "golden/slam_impl.hpp"
-
-namespace intgrid {
-template class GridSlam<IndexProbabilities>;
-}  // namespace intgrid

@@ -1,0 +1,69 @@
+// The `globloc` job: every selected scan of a log localized on its own in a known map, from no
+// prior (docs/algorithms.md 7), written as poses, a picture of the first scan's pose grid and the
+// run's metrics, scored against a reference log when one is given.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "intgrid/localization/global_localization.hpp"
+
+namespace intgrid::cli {
+
+// A reference pose counts as found when the estimate is this close in position and in heading.
+inline constexpr double kGlobLocPositionTolerance = 0.5;                             // m
+inline constexpr double kGlobLocHeadingTolerance = 15.0 * std::numbers::pi / 180.0;  // rad
+
+struct GlobLocJobOptions {
+  std::filesystem::path map;
+  std::filesystem::path log;
+  std::filesystem::path out;
+  std::optional<std::filesystem::path> reference;
+  std::string scans;      // "FIRST:LAST", 0-based and inclusive; empty: every scan
+  std::size_t every = 1;  // of the selected scans, localize every every-th
+  int beams = 60;         // readings a scan, spread over it (0: all)
+  localization::GlobalMethod method = localization::GlobalMethod::pose_grid;
+  localization::GlobalLocConfig config;
+  bool progress = true;
+};
+
+struct GlobLocScan {
+  std::size_t index = 0;  // in the log
+  double t = 0.0;
+  std::size_t readings = 0;
+  localization::GlobalEstimate estimate;
+  double seconds = 0.0;
+  std::optional<core::Pose2> reference;  // the reference log's pose at the same time
+  bool found = false;                    // within the tolerances of the reference pose
+};
+
+struct GlobLocJobResult {
+  std::vector<GlobLocScan> scans;  // the localized scans, in log order
+  std::size_t skipped_scans = 0;   // selected scans without a usable reading
+  double map_seconds = 0.0;        // preparing the map (LocalizationMap)
+  double seconds = 0.0;            // localizing, all scans
+  std::size_t matched = 0;         // scans with a reference pose
+  std::size_t found = 0;           // of those, within the tolerances
+  nlohmann::json metrics;          // what metrics.json holds
+};
+
+// Every method, in the order of the tables and CSVs.
+inline constexpr localization::GlobalMethod kGlobalMethods[] = {
+    localization::GlobalMethod::pose_grid, localization::GlobalMethod::markov,
+    localization::GlobalMethod::markov_mixture, localization::GlobalMethod::likelihood_field};
+
+// Name of a method on the command line (pog, markov, markov-mixture, likelihood-field) and in
+// tables.
+const char* global_method_name(localization::GlobalMethod method);
+
+// Reads the map, the log (and the reference), localizes, writes DIR/poses.txt, pose_grid.png and
+// metrics.json, each atomically. Bad inputs are InputErrors naming file and field.
+GlobLocJobResult run_globloc_job(const GlobLocJobOptions& options);
+
+}  // namespace intgrid::cli

@@ -1,0 +1,35 @@
+// The `map` job: a log into one occupancy grid with the log's own poses, written
+// as a ROS map (YAML + PGM) and a PNG with the sensor's path drawn on it.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "intgrid/core/map_compare.hpp"
+#include "intgrid/core/mapping.hpp"
+
+namespace intgrid::cli {
+
+struct MapJobOptions {
+  std::filesystem::path log;
+  std::filesystem::path out;
+  double resolution = 0.05;
+  core::Arithmetic arithmetic = core::Arithmetic::integer;
+  core::GaussianBeamModel model{0.05, 0.0};
+  int bits = 8;
+  int levels = 16;            // eps from the ISM's Pmax: p_levels = Pmax
+  std::optional<double> eps;  // overrides levels
+  core::VetoBound veto = core::VetoBound::strongest_claim;
+  double margin = 1.0;  // metres of grid around what the log saw
+};
+
+struct MapJobResult {
+  core::ProbabilityGrid map;
+  core::InsertionStats stats;
+  std::optional<core::SepsCodec> codec;  // the integer path's
+  double seconds = 0.0;                  // insertion only, not I/O
+};
+
+MapJobResult run_map_job(const MapJobOptions& options);
+
+}  // namespace intgrid::cli

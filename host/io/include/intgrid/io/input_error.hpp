@@ -1,0 +1,30 @@
+// The one exception every reader throws for bad input: it names the file, the line and the
+// field, so a user can go straight to the problem.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace intgrid::io {
+
+class InputError : public std::runtime_error {
+ public:
+  // line is 1-based; 0 means the problem is not on one line (e.g. a missing file).
+  // what() is "FILE:LINE: FIELD: MESSAGE", or "FILE: FIELD: MESSAGE" when line is 0.
+  InputError(std::filesystem::path file, std::size_t line, std::string field, std::string message);
+
+  const std::filesystem::path& file() const noexcept { return file_; }
+  std::size_t line() const noexcept { return line_; }
+  const std::string& field() const noexcept { return field_; }
+  const std::string& message() const noexcept { return message_; }
+
+ private:
+  std::filesystem::path file_;
+  std::size_t line_;
+  std::string field_;
+  std::string message_;
+};
+
+}  // namespace intgrid::io

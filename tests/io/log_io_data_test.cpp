@@ -1,0 +1,95 @@
+// The log readers on the bundled Malaga logs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "intgrid/io/log_io.hpp"
+#include "test_support.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::io;
+
+namespace intgrid {
+namespace {
+
+const std::filesystem::path kDataDir = INTGRID_DATA_DIR;
+const std::filesystem::path kLoopLog = kDataDir / "malaga_telecom_loop.log";
+const std::filesystem::path kReferenceLog = kDataDir / "malaga_telecom_loop_reference.log";
+
+TEST(BundledLog, LoopLogHasItsScansAndOdometry) {
+  const Log log = read_log(kLoopLog);
+  EXPECT_EQ(log.scans.size(), 225u);
+  EXPECT_EQ(log.odometry.size(), 224u);
+}
+
+TEST(BundledLog, FirstScanOfTheLoopLog) {
+  const Scan scan = read_log(kLoopLog).scans.at(0);
+  EXPECT_EQ(scan.ranges.size(), 361u);
+  EXPECT_EQ(scan.angle0, -1.570796);
+  EXPECT_EQ(scan.dangle, 0.008727);
+  EXPECT_EQ(scan.max_range, 80.0);
+  EXPECT_EQ(scan.t, 1137834225.713386);
+  EXPECT_EQ(scan.ranges.front(), 1.69);
+  EXPECT_EQ(scan.ranges.back(), 1.55);
+  EXPECT_EQ(scan.robot.x, 0.0);
+  EXPECT_EQ(scan.robot.theta, 0.0);
+  EXPECT_EQ(scan.sensor_mount.x, 0.78);
+  EXPECT_EQ(scan.sensor_mount.y, 0.0);
+  EXPECT_EQ(scan.sensor_mount.theta, 0.0);
+}
+
+TEST(BundledLog, ScansAndOdometryAreInTimeOrder) {
+  const Log log = read_log(kLoopLog);
+  EXPECT_TRUE(std::is_sorted(log.scans.begin(), log.scans.end(),
+                             [](const Scan& a, const Scan& b) { return a.t < b.t; }));
+  EXPECT_TRUE(
+      std::is_sorted(log.odometry.begin(), log.odometry.end(),
+                     [](const OdometryRecord& a, const OdometryRecord& b) { return a.t < b.t; }));
+  EXPECT_EQ(log.scans.back().t, 1137834284.788331);
+}
+
+TEST(BundledLog, ReferenceScansAreASubsetOfTheLoop) {
+  const Log reference = read_log(kReferenceLog);
+  ASSERT_EQ(reference.scans.size(), 99u);
+  EXPECT_TRUE(reference.odometry.empty());
+  std::set<double> loop_times;
+  for (const Scan& scan : read_log(kLoopLog).scans) loop_times.insert(scan.t);
+  for (const Scan& scan : reference.scans) EXPECT_EQ(loop_times.count(scan.t), 1u) << scan.t;
+}
+
+TEST(BundledLog, ParsesWellUnderFiftyMilliseconds) {
+  using Clock = std::chrono::steady_clock;
+  auto fastest = Clock::duration::max();
+  for (int run = 0; run < 3; ++run) {
+    const auto start = Clock::now();
+    const Log log = read_log(kLoopLog);
+    fastest = std::min(fastest, Clock::now() - start);
+    ASSERT_EQ(log.scans.size(), 225u);
+  }
+  EXPECT_LT(fastest, std::chrono::milliseconds(50));
+}
+
+TEST(BundledLog, WriteThenReadIsExact) {
+  const test::TempDir dir;
+  const Log original = read_log(kLoopLog);
+  write_log(dir / "copy.log", original);
+  const Log copy = read_log(dir / "copy.log");
+  ASSERT_EQ(copy.scans.size(), original.scans.size());
+  ASSERT_EQ(copy.odometry.size(), original.odometry.size());
+  for (std::size_t i = 0; i < original.scans.size(); ++i) {
+    EXPECT_EQ(copy.scans[i].t, original.scans[i].t);
+    EXPECT_EQ(copy.scans[i].ranges, original.scans[i].ranges);
+    EXPECT_EQ(copy.scans[i].robot.theta, original.scans[i].robot.theta);
+  }
+  for (std::size_t i = 0; i < original.odometry.size(); ++i) {
+    EXPECT_EQ(copy.odometry[i].t, original.odometry[i].t);
+    EXPECT_EQ(copy.odometry[i].pose.x, original.odometry[i].pose.x);
+  }
+}
+
+}  // namespace
+}  // namespace intgrid

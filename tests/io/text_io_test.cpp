@@ -1,0 +1,82 @@
+// The shared number parsing and formatting, and the InputError message layout.
+#include "intgrid/io/text_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "intgrid/io/input_error.hpp"
+#include "test_support.hpp"
+
+using namespace intgrid::core;
+
+using namespace intgrid::io;
+
+namespace intgrid {
+namespace {
+
+using test::expect_input_error;
+
+const std::filesystem::path kFile = "some/dir/input.log";
+
+double parse(std::string_view token) {
+  return parse_number<double>(token, kFile, 1, "x");
+}
+
+TEST(InputError, WhatNamesFileLineFieldAndMessage) {
+  const InputError error("some/dir/input.log", 17, "r_3", "cannot parse \"x\" as a number");
+  EXPECT_STREQ(error.what(), "some/dir/input.log:17: r_3: cannot parse \"x\" as a number");
+  EXPECT_EQ(error.file(), kFile);
+  EXPECT_EQ(error.line(), 17u);
+  EXPECT_EQ(error.field(), "r_3");
+  EXPECT_EQ(error.message(), "cannot parse \"x\" as a number");
+}
+
+TEST(InputError, LineZeroIsLeftOut) {
+  const InputError error("map.yaml", 0, "file", "cannot open: No such file or directory");
+  EXPECT_STREQ(error.what(), "map.yaml: file: cannot open: No such file or directory");
+}
+
+TEST(ParseNumber, AcceptsPlainNanInfinityAndPlusSign) {
+  EXPECT_EQ(parse("1.25"), 1.25);
+  EXPECT_EQ(parse("-3e-2"), -0.03);
+  EXPECT_EQ(parse("+7"), 7.0);
+  EXPECT_EQ(parse(".5"), 0.5);
+  EXPECT_TRUE(std::isnan(parse("nan")));
+  EXPECT_TRUE(std::isnan(parse("-nan")));
+  EXPECT_EQ(parse("inf"), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(parse("-inf"), -std::numeric_limits<double>::infinity());
+}
+
+TEST(ParseNumber, RejectsJunkAndNamesTheIndexedField) {
+  for (const char* token : {"", "1.5x", "abc", "+-1", "1,5", "1e999", "0x10"}) {
+    SCOPED_TRACE(token);
+    const std::string message = expect_input_error(
+        [&] {
+          parse_number<double>(token, kFile, 12, {"r_", 17});
+        },
+        kFile, 12, "r_17");
+    EXPECT_EQ(message, "cannot parse \"" + std::string(token) + "\" as a number");
+  }
+}
+
+TEST(ParseNumber, IntegersRejectFractions) {
+  EXPECT_EQ(parse_number<long long>("361", kFile, 3, "n"), 361);
+  const std::string message =
+      expect_input_error([&] { parse_number<long long>("361.0", kFile, 3, "n"); }, kFile, 3, "n");
+  EXPECT_EQ(message, "cannot parse \"361.0\" as an integer");
+}
+
+TEST(FormatNumber, IsShortAndReadsBackExactly) {
+  EXPECT_EQ(format_number(0.05), "0.05");
+  EXPECT_EQ(format_number(1137834225.713386), "1137834225.713386");
+  EXPECT_EQ(format_number(-45.0), "-45");
+  for (const double value : {1.0 / 3.0, -2e-300, 6.02214076e23, 0.1 + 0.2}) {
+    EXPECT_EQ(parse(format_number(value)), value);
+  }
+  EXPECT_TRUE(std::isnan(parse(format_number(std::nan("")))));
+}
+
+}  // namespace
+}  // namespace intgrid
