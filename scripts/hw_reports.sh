@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The hardware kernels' reports (docs/hardware.md, "What each kernel reports"), measured, not computed:
 #   - cycles per cell and latency, back-pressure off and on, and Verilator's simulation speed:
-#     the testbenches' report modes, run from build/default;
+#     the testbenches' report modes, run from build/full (the default preset has no hardware);
 #   - Yosys synth_ice40 resources (LUT4, carry, DFF, BRAM) of each kernel configuration, and
 #     nextpnr-ice40 Fmax on an iCE40 HX8K (ct256) of the same configuration with every port
 #     registered (a timing harness, so that every path of the kernel is register to register);
@@ -11,15 +11,17 @@
 # Writes docs/hardware_report.md and docs/hardware_report.json (each atomically), deterministic
 # apart from timings and the date. `intgrid demo` prints the JSON's "summary" rows.
 #
-#   bash scripts/hw_reports.sh              builds first (bash scripts/build.sh), then measures
-#   bash scripts/hw_reports.sh --no-build   uses build/default as it is
+#   bash scripts/hw_reports.sh              builds what it runs first (bash scripts/build.sh full
+#                                           <its programs>), then measures
+#   bash scripts/hw_reports.sh --no-build   uses build/full as it is
 #
-# Adding a kernel: one entry in `benches` (its report program and the parser of its JSON lines in
-# the Python part below, `SIM`), entries in `designs`, and a harness in write_harnesses.
+# Adding a kernel: one entry in `benches` (its report program, also in `build_targets`, and the
+# parser of its JSON lines in the Python part below, `SIM`), entries in `designs`, and a harness
+# in write_harnesses.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-build="$root/build/default"
+build="$root/build/full"
 gen="$build/testbench/sectoral_ism"  # where testbench/sectoral_ism.cmake writes the ISM tables
 docs="$root/docs"
 seed=1
@@ -36,7 +38,7 @@ for arg in "$@"; do
   case "$arg" in
     --no-build) do_build=0 ;;
     -h | --help)
-      sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
+      sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *) die "unknown argument '$arg' (usage: bash scripts/hw_reports.sh [--no-build])" ;;
@@ -56,9 +58,11 @@ cleanup() {
 trap cleanup EXIT
 
 # --- Build -------------------------------------------------------------------------------------
+# The report programs below and the ISM's tables (ROM files and parameters), of the full preset.
+build_targets=(index_fusion_rtl_test sectoral_ism_report sectoral_ism_tables)
 if [ "$do_build" -eq 1 ]; then
-  say "building (bash scripts/build.sh default; log in $tmp/build.log while it runs)"
-  if ! bash scripts/build.sh default >"$tmp/build.log" 2>&1; then
+  say "building (bash scripts/build.sh full ${build_targets[*]}; log in $tmp/build.log while it runs)"
+  if ! bash scripts/build.sh full "${build_targets[@]}" >"$tmp/build.log" 2>&1; then
     tail -n 40 "$tmp/build.log" >&2
     die "the build failed (last lines above)"
   fi
@@ -74,7 +78,7 @@ say "machine: $cpu, $cores cores"
 say "tools: $v_yosys; $v_nextpnr; $v_verilator"
 
 # --- Simulation: the testbenches' report modes -------------------------------------------------
-# kernel|program (under build/default)|arguments: each prints one JSON line per configuration.
+# kernel|program (under build/full)|arguments: each prints one JSON line per configuration.
 # INTGRID_TB_SEED fixes the random traffic of the testbenches that draw it, so reruns compare.
 benches=(
   "index_fusion|testbench/index_fusion_rtl_test|--report"
@@ -83,7 +87,7 @@ benches=(
 : >"$tmp/sim.jsonl"
 for entry in "${benches[@]}"; do
   IFS='|' read -r kernel program args <<<"$entry"
-  [ -x "$build/$program" ] || die "$build/$program missing: build it with bash scripts/build.sh"
+  [ -x "$build/$program" ] || die "$build/$program missing: build it with bash scripts/build.sh full"
   say "simulating $kernel: $program $args"
   # shellcheck disable=SC2086  # the arguments are words
   if ! INTGRID_TB_SEED=$seed "$build/$program" $args >"$tmp/sim_$kernel.out" \
@@ -756,12 +760,12 @@ for kernel in ["index_fusion", "sectoral_ism", "reference"]:
 
 w("## Method")
 w("")
-w("- Simulation: the Verilator testbenches' report programs in build/default (INTGRID_TB_SEED=%s), "
+w("- Simulation: the Verilator testbenches' report programs in build/full (INTGRID_TB_SEED=%s), "
   "each output checked against golden; the script refuses to report a run that failed its "
   "checks." % seed)
 w("- Yosys: every file of rtl/ read with `read_verilog -sv`, the configuration set with "
   "`chparam` (index fusion, the adder) or the `sectoral_ism_<config>.ys` that "
-  "testbench/ism_kernel_export writes into build/default/testbench/sectoral_ism with the ROM "
+  "testbench/ism_kernel_export writes into build/full/testbench/sectoral_ism with the ROM "
   "files; then `synth_ice40 -top <top>` and `stat`, and separately `synth -flatten -top <top>` "
   "and `stat`.")
 w("- nextpnr: `%s`; Fmax is the last \"Max frequency for clock\" line of its log. The design is "

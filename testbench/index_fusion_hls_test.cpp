@@ -1,4 +1,4 @@
-// The HLS function of kernel 1 (hls/index_fusion.hpp) against golden intgrid::fuse_indices:
+// The HLS function of kernel 1 (hls/index_fusion.hpp) against golden intgrid::core::fuse_indices:
 // every width B = 4..16 (exhaustive where 2^(2B) <= 2^20, 2^20 random pairs beyond), the packing
 // of a beat against the bus packing the RTL testbench drives, and the accumulate variant. Part of
 // it is compiled a second time with __SYNTHESIS__ defined (index_fusion_hls_synth.cpp) so that the
@@ -42,7 +42,7 @@ void check_width(std::mt19937_64& rng) {
     const int got = sign_extend(hls::saturating_add<B>(static_cast<std::uint32_t>(a) & kMask,
                                                        static_cast<std::uint32_t>(b) & kMask),
                                 B);
-    const int want = intgrid::fuse_indices<int>(a, b, kMax);
+    const int want = intgrid::core::fuse_indices<int>(a, b, kMax);
     ++checked;
     if (got != want) {
       if (++mismatches <= 5)
@@ -104,7 +104,7 @@ void check_beat(std::mt19937_64& rng) {
       const auto lane = static_cast<std::size_t>(l);
       ASSERT_EQ(sign_extend(hls::get_lane<B, LANES>(beat_a, l), B), a[lane]);
       ASSERT_EQ(sign_extend(hls::get_lane<B, LANES>(y, l), B),
-                intgrid::fuse_indices<int>(a[lane], b[lane], kMax))
+                intgrid::core::fuse_indices<int>(a[lane], b[lane], kMax))
           << "B=" << B << " LANES=" << LANES << " lane " << l;
     }
     if constexpr (Geometry::kWidth % 64 != 0) {
@@ -141,8 +141,9 @@ TEST(IndexFusionHls, FuseBlockFusesEveryBeat) {
   hls::fuse_block<12, 8, kN>(a, b, y);
   for (std::size_t i = 0; i < kN; ++i)
     for (int l = 0; l < 8; ++l)
-      ASSERT_EQ(sign_extend(hls::get_lane<12, 8>(y[i], l), 12),
-                intgrid::fuse_indices<int>(sign_extend(hls::get_lane<12, 8>(a[i], l), 12),
+      ASSERT_EQ(
+          sign_extend(hls::get_lane<12, 8>(y[i], l), 12),
+          intgrid::core::fuse_indices<int>(sign_extend(hls::get_lane<12, 8>(a[i], l), 12),
                                            sign_extend(hls::get_lane<12, 8>(b[i], l), 12), 2047));
 }
 
@@ -164,7 +165,7 @@ void check_tile(std::mt19937_64& rng) {
         const int v = std::clamp(observation(rng) / 8 + bias, -(1 << (B - 1)), kMax);
         hls::set_lane<B, LANES>(in[i], l, static_cast<std::uint32_t>(v));
         int& ref = reference[i * LANES + static_cast<std::size_t>(l)];
-        ref = intgrid::fuse_indices<int>(ref, v, kMax);
+        ref = intgrid::core::fuse_indices<int>(ref, v, kMax);
       }
     tile.accumulate(in);
   }

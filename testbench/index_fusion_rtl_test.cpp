@@ -1,6 +1,6 @@
 // Verilator testbench of rtl/index_fusion.sv, one Verilated model per (B, LANES) configuration
 // (the list is in testbench/index_fusion.cmake), every output beat checked against golden
-// intgrid::fuse_indices by the scoreboard of testbench/index_fusion_tb.hpp.
+// intgrid::core::fuse_indices by the scoreboard of testbench/index_fusion_tb.hpp.
 //
 //   index_fusion_rtl_test [gtest flags]   the tests (ctest label hw)
 //   index_fusion_rtl_test --report        one JSON line per configuration: cycles per beat and

@@ -1,6 +1,6 @@
 // The index-fusion testbench, independent of the simulator: stimulus, the driver of the two input
 // streams and of the output's ready, and a scoreboard that checks every cycle of one model (RTL
-// under Verilator, or the SystemC model) against golden intgrid::fuse_indices.
+// under Verilator, or the SystemC model) against golden intgrid::core::fuse_indices.
 //
 // Per cycle the harness (1) puts driver.drive() on the inputs, (2) lets the combinational logic
 // settle, (3) hands the settled outputs to scoreboard.observe(), which returns whether the input
@@ -227,7 +227,7 @@ class FusionScoreboard {
       const InFlight& f = flight_.front();
       for (int l = 0; l < LANES; ++l) {
         const auto lane = static_cast<std::size_t>(l);
-        const int want = intgrid::fuse_indices<int>(f.beat.a[lane], f.beat.b[lane], kMax);
+        const int want = intgrid::core::fuse_indices<int>(f.beat.a[lane], f.beat.b[lane], kMax);
         const int got = sign_extend(o.y_data.field(l * B, B), B);
         ++result_.cells_checked;
         if (got != want) {

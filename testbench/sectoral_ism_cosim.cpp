@@ -30,12 +30,12 @@
 #include "testbench/sectoral_ism_rtl_bench.hpp"
 
 using namespace intgrid::core;
-
 using namespace intgrid::kernel;
 
 namespace {
 
 using namespace intgrid;
+using namespace intgrid::hw;
 using sc_core::sc_signal;
 
 struct Outputs {

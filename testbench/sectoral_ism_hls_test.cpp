@@ -17,7 +17,6 @@
 #include "sectoral_ism_cone16_config.hpp"
 
 using namespace intgrid::core;
-
 using namespace intgrid::kernel;
 
 namespace intgrid::hw {

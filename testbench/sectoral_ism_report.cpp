@@ -22,12 +22,12 @@
 #include "testbench/sectoral_ism_rtl_bench.hpp"
 
 using namespace intgrid::core;
-
 using namespace intgrid::kernel;
 
 namespace {
 
 using namespace intgrid;
+using namespace intgrid::hw;
 
 struct Stats {
   std::uint64_t min = 0, max = 0;

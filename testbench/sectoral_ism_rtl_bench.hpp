@@ -42,7 +42,8 @@ inline std::uint64_t ism_bench_seed(std::uint64_t fallback, const char* what) {
 
 // The readings every run includes: z = 0, below the first ring, on and between every ring,
 // at and past the last ring, at and past reach, and the largest reading the port holds.
-inline std::vector<std::uint32_t> ism_edge_readings(const IsmKernelTables& k, int reading_bits) {
+inline std::vector<std::uint32_t> ism_edge_readings(const kernel::IsmKernelTables& k,
+                                                    int reading_bits) {
   const std::uint32_t unit = 1u << k.format.reading_frac_bits;
   std::vector<std::uint32_t> out{0, 1, unit / 2, unit - 1};
   for (int r = 1; r <= k.grid.rings; ++r) {
@@ -59,8 +60,9 @@ inline std::vector<std::uint32_t> ism_edge_readings(const IsmKernelTables& k, in
 }
 
 // `count` random readings: most over [0, reach + one cell], some over the whole port.
-inline std::vector<std::uint32_t> ism_random_readings(const IsmKernelTables& k, int reading_bits,
-                                                      std::size_t count, std::uint64_t seed) {
+inline std::vector<std::uint32_t> ism_random_readings(const kernel::IsmKernelTables& k,
+                                                      int reading_bits, std::size_t count,
+                                                      std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   const std::uint32_t unit = 1u << k.format.reading_frac_bits;
   std::uniform_int_distribution<std::uint32_t> near(0, k.reach + unit);
@@ -103,7 +105,7 @@ template <class Model>
 class IsmRtlBench {
  public:
   // trace_path: a VCD file to dump (needs a model verilated with TRACE), or empty.
-  IsmRtlBench(const IsmKernelTables& kernel, const std::string& trace_path = {})
+  IsmRtlBench(const kernel::IsmKernelTables& kernel, const std::string& trace_path = {})
       : kernel_(kernel), context_(std::make_unique<VerilatedContext>()) {
     context_->randReset(0);
     model_ = std::make_unique<Model>(context_.get());
@@ -175,7 +177,7 @@ class IsmRtlBench {
         timing_setup = false;
       }
       if (z_fire) {
-        expected.push_back(ism_kernel_indices(kernel_, readings[next]));
+        expected.push_back(kernel::ism_kernel_indices(kernel_, readings[next]));
         accepted_at.push_back(res.cycles);
         if (opt.isolated) {
           timing_setup = true;
@@ -279,7 +281,7 @@ class IsmRtlBench {
     tick();
   }
 
-  const IsmKernelTables& kernel_;
+  const kernel::IsmKernelTables& kernel_;
   std::unique_ptr<VerilatedContext> context_;
   std::unique_ptr<Model> model_;
 #if VM_TRACE

@@ -29,7 +29,6 @@
 #include "testbench/sectoral_ism_rtl_bench.hpp"
 
 using namespace intgrid::core;
-
 using namespace intgrid::kernel;
 
 namespace intgrid::hw {

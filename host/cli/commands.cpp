@@ -31,15 +31,14 @@ void print_json(const nlohmann::json& j) {
 
 CLI::Option* add_arithmetic_option(CLI::App& cmd, core::Arithmetic& arithmetic,
                                    const std::string& help) {
-  return cmd.add_option("--arith", arithmetic, help)
-      ->transform(CLI::CheckedTransformer(std::map<std::string, core::Arithmetic>{
-          {"int", core::Arithmetic::integer}, {"float", core::Arithmetic::floating}}));
+  return add_choice_option(
+      cmd, "--arith", arithmetic,
+      {{"int", core::Arithmetic::integer}, {"float", core::Arithmetic::floating}}, help);
 }
 
 void check_reading_option(double z) {
   if (!(z >= 0.0) || !std::isfinite(z))
-    throw std::invalid_argument("--z must be a finite distance >= 0 (m), got " +
-                                io::format_number(z));
+    bad_option("--z", "must be a finite distance >= 0 (m), got " + option_number(z));
 }
 
 namespace {
@@ -66,25 +65,34 @@ nlohmann::json agreement_json(const core::MapAgreement& a) {
 // Options shared by `map` and `demo`: the sensor model and the integer set.
 void add_model_options(CLI::App& cmd, MapJobOptions& o) {
   cmd.add_option("--sigma", o.model.sigma0, "sensor standard deviation at distance 0 (m)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   cmd.add_option("--k-d", o.model.k_d, "relative growth of sigma per metre")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
   cmd.add_option("--bits", o.bits, "S_eps index width")
-      ->check(CLI::Range(2, 16))
+      ->transform(whole_range(2, 16))
       ->capture_default_str();
   cmd.add_option("--levels", o.levels, "eps such that the ISM's Pmax is this many index steps")
-      ->check(CLI::PositiveNumber)
+      ->transform(whole_at_least(1))
       ->capture_default_str();
-  cmd.add_option("--eps", o.eps, "eps of S_eps (overrides --levels)")->check(CLI::Range(0.0, 0.5));
-  cmd.add_option("--veto-bound", o.veto,
-                 "bound each reading's empty indices by its strongest occupied index")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, core::VetoBound>{{"claim", core::VetoBound::strongest_claim},
-                                                 {"none", core::VetoBound::none}},
-          CLI::ignore_case))
+  cmd.add_option("--eps", o.eps, "eps of S_eps (overrides --levels)")
+      ->check(real_range(0.0, 0.5, true, true));
+  add_choice_option(cmd, "--veto-bound", o.veto,
+                    {{"claim", core::VetoBound::strongest_claim}, {"none", core::VetoBound::none}},
+                    "bound each reading's empty indices by its strongest occupied index")
       ->default_str("claim");
+}
+
+// A figure's --out: a PNG file.
+CLI::Validator png_file() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (std::filesystem::path(text).extension() != ".png")
+          return "must be a file name ending in .png, got '" + text + "'";
+        return {};
+      },
+      "");
 }
 
 void print_figure_files(const figures::FigureFiles& files) {
@@ -100,19 +108,27 @@ void add_resolution_command(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
-      "resolution",
-      "the smallest cell size whose ISM reaches Pmax (thesis 2.4.2), and its worst case");
+      "resolution", "the smallest cell size whose ISM reaches a Pmax, and its worst case");
+  cmd->footer(
+      "Thesis 2.4.2: the smallest cell size s whose narrow-FOV ISM reaches --pmax with the "
+      "reading on a cell centre, the worst-case Pmax at that s (the reading anywhere in a "
+      "cell), and the s that reaches --pmax wherever the reading falls (only up to 2/3).");
   cmd->add_option("--sigma", a->sigma, "sensor standard deviation (m)")
       ->required()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--pmax", a->pmax, "wanted maximum occupancy probability, in (1/2, 1)")
-      ->required();
+      ->check(positive());
+  cmd->add_option("--pmax", a->pmax, "wanted maximum occupancy probability")
+      ->required()
+      ->check(real_range(0.5, 1.0, true, true));
   cmd->add_flag("--json", a->json, "print JSON");
   cmd->callback([a] {
-    const double cell = core::smallest_cell_for_pmax(a->sigma, a->pmax);
+    static const FieldFlags kFlags = {{"Pmax", "--pmax"}, {"sigma", "--sigma"}};
+    const double cell =
+        naming_flags(kFlags, [&] { return core::smallest_cell_for_pmax(a->sigma, a->pmax); });
     const core::WorstCasePmax worst = core::narrow_pmax_worst_case(cell, a->sigma);
     std::optional<double> cell_worst;
-    if (a->pmax <= 2.0 / 3.0) cell_worst = core::smallest_cell_for_pmax(a->sigma, a->pmax, true);
+    if (a->pmax <= 2.0 / 3.0)
+      cell_worst = naming_flags(
+          kFlags, [&] { return core::smallest_cell_for_pmax(a->sigma, a->pmax, true); });
     if (a->json) {
       print_json(
           {{"sigma", a->sigma},
@@ -141,9 +157,13 @@ void add_map_command(CLI::App& app) {
   auto o = std::make_shared<MapJobOptions>();
   auto json = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("map", "map a log with its own poses into an occupancy grid");
+  cmd->footer(
+      "Writes DIR/map.yaml + map.pgm (ROS map_server) and map.png with the sensor's path in "
+      "red. Readings that are 0, NaN, infinite, negative or at/over the scan's maximum range are "
+      "not inserted, and are counted.");
   cmd->add_option("--log", o->log, "log file (project format or CARMEN)")->required();
   cmd->add_option("--out", o->out, "output folder: map.yaml, map.pgm, map.png")->required();
-  cmd->add_option("--res", o->resolution, "cell size (m)")->required()->check(CLI::PositiveNumber);
+  cmd->add_option("--cell,--res", o->resolution, "cell size (m)")->required()->check(positive());
   add_arithmetic_option(*cmd, o->arithmetic, "int: S_eps indices; float: double-precision Bayes")
       ->default_str("int");
   add_model_options(*cmd, *o);
@@ -179,7 +199,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--reference", a->reference, "reference map YAML")->required();
   cmd->add_option("--tolerance-cells", a->tolerance_cells,
                   "distance counted as near, in reference cells")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "print JSON");
   cmd->callback([a] {
@@ -198,7 +218,11 @@ void add_compare_command(CLI::App& app) {
 
 void add_figure_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
-      "figure", "the thesis's figures as one PNG each, with the numbers behind them beside it");
+      "figure", "the thesis's figures and experiment sweeps: PNGs with their numbers beside them");
+  cmd->footer(
+      "The thesis's experiment sweeps are these subcommands, and no other subcommand runs one: "
+      "ns-sweep (figure 2.12), fusion (figure 2.13), slam-sweeps (section 3.6), globloc-sweeps "
+      "(section 4.5). `intgrid demo` draws the first two's figures with their defaults.");
   cmd->require_subcommand(1);
 
   struct SweepArgs {
@@ -207,11 +231,14 @@ void add_figure_command(CLI::App& app) {
   };
   auto sweep = std::make_shared<SweepArgs>();
   CLI::App* ns_sweep = cmd->add_subcommand(
-      "ns-sweep",
-      "figure 2.12: the large-FOV ISM exact (Ns = A) and with Ns = 1, 3, 5, 10 sectors; CSV "
-      "ns,ring,bin,p beside the PNG");
-  ns_sweep->add_option("--out", sweep->out, "PNG file")->capture_default_str();
-  ns_sweep->add_option("--z", sweep->z, "the reading (m)")->capture_default_str();
+      "ns-sweep", "figure 2.12: the large-FOV ISM against the number of sectors Ns");
+  ns_sweep->footer(
+      "The large-FOV ISM exact (Ns = A) and with Ns = 1, 3, 5, 10 sectors; CSV ns,ring,bin,p "
+      "beside the PNG (same name, .csv).");
+  ns_sweep->add_option("--out", sweep->out, "PNG file")->check(png_file())->capture_default_str();
+  ns_sweep->add_option("--z", sweep->z, "the reading (m)")
+      ->check(non_negative())
+      ->capture_default_str();
   ns_sweep->callback([sweep] {
     check_reading_option(sweep->z);
     print_figure_files(figures::write_ns_sweep_figure(sweep->out, sweep->z));
@@ -219,10 +246,11 @@ void add_figure_command(CLI::App& app) {
 
   auto fusion_out = std::make_shared<std::filesystem::path>("fusion.png");
   CLI::App* fusion = cmd->add_subcommand(
-      "fusion",
-      "figure 2.13: a narrow and a cone sensor, their ISMs, mono-sensor grids and fusion in "
-      "double and S_eps; JSON summary of the grids beside the PNG");
-  fusion->add_option("--out", *fusion_out, "PNG file")->capture_default_str();
+      "fusion", "figure 2.13: a narrow and a cone sensor fused, in double and S_eps");
+  fusion->footer(
+      "A narrow and a cone sensor, their ISMs, mono-sensor grids and their fusion in double and "
+      "S_eps; a JSON summary of the grids beside the PNG (same name, .json).");
+  fusion->add_option("--out", *fusion_out, "PNG file")->check(png_file())->capture_default_str();
   fusion->callback([fusion_out] { print_figure_files(figures::write_fusion_figure(*fusion_out)); });
 
   add_slam_sweeps_figure(*cmd);
@@ -350,14 +378,20 @@ void add_demo_command(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("demo", "the full host pipeline on the bundled real log");
+  cmd->footer(
+      "Maps of the bundled log in both arithmetics, the SLAM of the raw log, global localization "
+      "of every 10th scan, the two ISM figures (those of `intgrid figure ns-sweep` and `figure "
+      "fusion`), the integer kernel's agreement and the hardware kernels' summary; "
+      "DIR/summary.json.");
   cmd->add_option("--out", a->out, "output folder")->capture_default_str();
   cmd->add_option("--data", a->data,
                   "folder of the bundled data (default: share/intgrid/data beside the command)");
   add_model_options(*cmd, a->map);
   cmd->callback([a] {
     const std::filesystem::path out = std::filesystem::absolute(a->out);
-    std::printf("intgrid demo: writing to %s\n", out.string().c_str());
+    // Read before anything is printed: a wrong --data is one error line.
     const io::RosMap reference = io::read_ros_map(a->data / "malaga_telecom_map.yaml");
+    std::printf("intgrid demo: writing to %s\n", out.string().c_str());
     nlohmann::json summary;
     std::printf(
         "mapping the reference run's scans with its poses (%s), 5 cm cells, sigma %.3g m:\n",

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/map_job.hpp"
+#include "cli/options.hpp"
 #include "intgrid/localization/global_localization.hpp"
 #include "intgrid/slam/grid_slam.hpp"
 
@@ -19,19 +20,27 @@ void add_demo_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_slam_command(CLI::App& app);
 void add_globloc_command(CLI::App& app);
-// The SLAM settings as options (--res, --lambda, --xi, ...), shared by slam and the figures.
+// The SLAM settings as options (--cell, --lambda, --xi, ...), shared by slam and the figures.
 void add_slam_options(CLI::App& cmd, slam::SlamConfig& config);
-// Global localization's settings (--pose-res, --headings, --sigma, --max-range) and --method,
-// shared by globloc and the figures.
+// Throws OptionError naming the flag for a SLAM setting the golden check refuses.
+void check_slam_options(const slam::SlamConfig& config);
+// Global localization's settings (--pose-cell, --headings, --sigma, --max-range, --levels,
+// --veto-levels) and --method, shared by globloc and the figures.
 void add_global_loc_options(CLI::App& cmd, localization::GlobalLocConfig& config);
 CLI::Option* add_global_method_option(CLI::App& cmd, localization::GlobalMethod& method);
+// GlobalLocConfig's fields as check_global_loc_config and LocalizationMap name them -> the flags
+// of add_global_loc_options.
+const FieldFlags& global_loc_flags();
+// Throws OptionError for what add_global_loc_options' validators cannot see alone (--veto-levels
+// above --levels), then runs check_global_loc_config with its fields named as flags.
+void check_global_loc_options(const localization::GlobalLocConfig& config);
 
 // Shared by the subcommands.
 void print_json(const nlohmann::json& j);
 // --arith int|float; the caller states the default.
 CLI::Option* add_arithmetic_option(CLI::App& cmd, core::Arithmetic& arithmetic,
                                    const std::string& help);
-// Throws std::invalid_argument unless the reading --z is a finite distance >= 0.
+// Throws OptionError unless the reading --z is a finite distance >= 0.
 void check_reading_option(double z);
 
 }  // namespace intgrid::cli

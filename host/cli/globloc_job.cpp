@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "cli/commands.hpp"
+#include "cli/options.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/figures/bitmap_font.hpp"
 #include "intgrid/io/atomic_file.hpp"
@@ -70,7 +72,7 @@ void check_map(const io::RosMap& map, const std::filesystem::path& file,
                              io::format_number(map.free_thresh) + "), so no pose to find");
   if (c.pose_res < map.grid.geometry.resolution)
     throw io::InputError(file, 0, "resolution",
-                         "the pose resolution --pose-res " + io::format_number(c.pose_res) +
+                         "the pose-grid step --pose-cell " + io::format_number(c.pose_res) +
                              " m is finer than the map's " +
                              io::format_number(map.grid.geometry.resolution) + " m");
 }
@@ -223,8 +225,8 @@ const char* global_method_name(localization::GlobalMethod method) {
 }
 
 GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
-  localization::check_global_loc_config(o.config);
-  if (o.every == 0) throw std::invalid_argument("--every must be at least 1");
+  check_global_loc_options(o.config);
+  if (o.every == 0) bad_option("--every", "must be at least 1");
   const io::RosMap map = io::read_ros_map(o.map);
   const core::Log log = io::read_log(o.log);
   if (log.scans.empty()) throw io::InputError(o.log, 0, "scans", "the log holds no scan");
@@ -266,6 +268,9 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   try {
     lmap.emplace(map.grid, map.occupied_thresh, map.free_thresh, o.config);
   } catch (const std::invalid_argument& e) {
+    // The pose grid's options (a lattice too big for the map: --pose-cell), else the map's.
+    if (std::string_view(e.what()).starts_with("pose_res"))
+      rethrow_naming_flags(e, global_loc_flags());
     throw io::InputError(o.map, 0, "image", e.what());
   }
   r.map_seconds = seconds_since(map_start);

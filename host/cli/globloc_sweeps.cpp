@@ -31,6 +31,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// GlobalTrialConditions' fields -> the options of globloc-sweeps that set them.
+const FieldFlags& trial_condition_flags() {
+  static const FieldFlags flags = {{"readings", "--beams"},
+                                   {"fov", "--fov"},
+                                   {"max_range", "--sensor-range"},
+                                   {"noise", "--noise"}};
+  return flags;
+}
+
 constexpr const auto& kMethods = kGlobalMethods;
 constexpr std::size_t kMethodCount = std::size(kGlobalMethods);
 // Seed streams: the true poses (per trial, shared by every sweep point), then the sweeps'.
@@ -257,14 +266,18 @@ void print_table(const SweepSpec& s, const std::vector<Aggregate>& points) {
 
 void run_globloc_sweeps(const GlobLocSweepOptions& o) {
   const auto wall_start = Clock::now();
-  if (o.trials == 0) throw std::invalid_argument("--trials must be at least 1");
-  localization::check_global_loc_config(o.config);
-  experiments::check_global_trial_conditions(o.conditions);
+  if (o.trials == 0) bad_option("--trials", "must be at least 1");
+  check_global_loc_options(o.config);
+  naming_flags(trial_condition_flags(),
+               [&] { experiments::check_global_trial_conditions(o.conditions); });
+  if (!(o.clearance >= 0.0) || !std::isfinite(o.clearance))
+    bad_option("--clearance",
+               "must be a finite distance >= 0 (m), got " + option_number(o.clearance));
   const io::RosMap map = io::read_ros_map(o.map);
   if (o.config.pose_res < map.grid.geometry.resolution)
     throw io::InputError(
         o.map, 0, "resolution",
-        io::printed("the pose resolution --pose-res %g m is finer than the map's %g m",
+        io::printed("the pose-grid step --pose-cell %g m is finer than the map's %g m",
                     o.config.pose_res, map.grid.geometry.resolution));
   std::optional<experiments::GlobalTrialWorld> world;
   try {
@@ -298,6 +311,8 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
         maps.emplace_back(sigma, std::make_unique<localization::LocalizationMap>(
                                      map.grid, map.occupied_thresh, map.free_thresh, config));
       } catch (const std::invalid_argument& e) {
+        if (std::string_view(e.what()).starts_with("pose_res"))
+          rethrow_naming_flags(e, global_loc_flags());
         throw io::InputError(o.map, 0, "image", e.what());
       }
     }
@@ -453,43 +468,53 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
 void add_globloc_sweeps_figure(CLI::App& figure) {
   auto o = std::make_shared<GlobLocSweepOptions>();
   CLI::App* cmd = figure.add_subcommand(
-      "globloc-sweeps",
-      "thesis 4.5: success rate and errors of global localization (pose occupancy grid, Markov, "
-      "mixture, likelihood field) against readings, noise, contamination and unmodelled "
-      "obstacles, simulated on a map; CSVs, gnuplot plots, a table");
+      "globloc-sweeps", "thesis 4.5: global localization's success against simulated conditions");
+  cmd->footer(
+      "Success rate and errors of global localization (pose occupancy grid, Markov, mixture, "
+      "likelihood field) against readings, noise, contamination and unmodelled obstacles, "
+      "simulated on --map (the map is also the world): DIR/globloc_*.csv, one gnuplot plot a "
+      "sweep, globloc_timing.csv, a table. The simulated LiDAR: --beams, --noise, --fov, "
+      "--sensor-range; the localizers: --pose-cell, --headings, --sigma, --max-range, --levels, "
+      "--veto-levels.");
   cmd->add_option("--map", o->map, "the map, also the simulated world (ROS map_server YAML)")
       ->required();
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();
   cmd->add_option("--trials", o->trials, "random true poses per sweep point")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+      ->transform(whole_range(1, 1'000'000))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the true poses, obstacles and readings")
+      ->transform(seed_number())
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "worker threads (0: every core)")
-      ->check(CLI::Range(0u, 1024u))
+      ->transform(whole_range(0, 1024))
       ->capture_default_str();
   cmd->add_flag("--quick", o->quick, "two points a sweep (for tests)");
-  cmd->add_option("--sweeps", o->only, "run only these sweeps (default: all)")
+  const std::vector<std::string> sweeps = {"readings", "noise", "contamination", "obstacles",
+                                           "large_obstacle"};
+  cmd->add_option("--sweeps", o->only, "run only these sweeps, comma-separated (default: all)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"readings", "noise", "contamination", "obstacles", "large_obstacle"}));
+      ->transform(one_of(sweeps))
+      ->type_name(choice_names(sweeps, "|"));
   cmd->add_option("--gnuplot", o->gnuplot, "the gnuplot program")->capture_default_str();
   add_global_loc_options(*cmd, o->config);
-  cmd->add_option("--readings", o->conditions.readings, "readings a scan, default condition")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
+  cmd->add_option("--beams,--readings", o->conditions.readings,
+                  "beams of the simulated LiDAR (readings a scan), default condition")
+      ->transform(whole_range(1, 100'000))
       ->capture_default_str();
   cmd->add_option("--noise", o->conditions.noise, "sensor noise (m), default condition")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
   cmd->add_option_function<double>(
          "--fov", [o](double deg) { o->conditions.fov = deg * std::numbers::pi / 180.0; },
          "the simulated LiDAR's field of view (degrees, default 360)")
-      ->check(CLI::Range(1.0, 360.0));
-  cmd->add_option("--sensor-range", o->conditions.max_range, "the simulated LiDAR's range (m)")
-      ->check(CLI::PositiveNumber)
+      ->check(real_range(1.0, 360.0));
+  cmd->add_option("--sensor-range", o->conditions.max_range,
+                  "the simulated LiDAR's range (m); the localizers' is --max-range")
+      ->check(positive())
       ->capture_default_str();
   cmd->add_option("--clearance", o->clearance,
                   "true positions at least this far from the map's non-free cells (m)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
   cmd->add_flag(
       "--fixed-sigma", o->fixed_sigma,

@@ -33,11 +33,11 @@ struct IsmArgs {
   std::optional<int> bits;
   std::optional<double> eps;
   bool json = false;
+  std::optional<double> sigma;  // narrow: sigma0 of the Gaussian beam; large: the cone's sigma0
   // Narrow FOV.
-  std::optional<double> sigma;
   std::optional<double> length;
   // Large FOV: the options fill grid and model, apart from the FOV (in degrees here), the
-  // cell size and k_d, whose defaults depend on the mode.
+  // cell size, sigma and k_d, whose defaults depend on the mode.
   std::optional<double> fov_degrees;
   core::SectoralGrid grid;
   core::ConeSensorModel model;
@@ -47,25 +47,55 @@ struct IsmArgs {
   std::uint64_t seed = 1;
 };
 
+// The golden model's fields -> the options of `ism`.
+const FieldFlags& ism_flags() {
+  static const FieldFlags flags = {{"sigma", "--sigma"},     {"k_d", "--k-d"},
+                                   {"k_theta", "--k-theta"}, {"k_size", "--k-size"},
+                                   {"cell size", "--cell"},  {"index width", "--bits"},
+                                   {"eps", "--eps"},         {"reading z", "--z"}};
+  return flags;
+}
+
 template <class T>
-T required(const std::optional<T>& value, const char* message) {
-  if (!value) throw std::invalid_argument(message);
+T required(const std::optional<T>& value, const char* flag, const char* when) {
+  if (!value) throw OptionError(std::string(flag) + " is required " + when);
   return *value;
 }
 
+// The polar grid's options, checked together (check_sectoral_grid's limits, named as flags).
+void check_grid_options(const core::SectoralGrid& g, bool kernel) {
+  if (g.sectors > g.bins)
+    bad_option("--sectors",
+               std::to_string(g.sectors) + " exceeds --bins " + std::to_string(g.bins) + " (A)");
+  if (g.bins % g.sectors != 0)
+    bad_option("--bins", std::to_string(g.bins) + " is no multiple of --sectors " +
+                             std::to_string(g.sectors) +
+                             ", so sectors would be unequal or asymmetric about the axis");
+  if (static_cast<long long>(g.rings) * g.bins > core::kMaxPolarCells)
+    bad_option("--rings", std::to_string(g.rings) + " x --bins " + std::to_string(g.bins) +
+                              " exceeds " + std::to_string(core::kMaxPolarCells) + " polar cells");
+  if (kernel && g.sectors > kernel::kMaxKernelSectors)
+    bad_option("--sectors", std::to_string(g.sectors) + " exceeds the integer kernel's " +
+                                std::to_string(kernel::kMaxKernelSectors) +
+                                " (--arith int, --agreement)");
+  // What is left to the golden check (nothing, with the options' own checks) is named too.
+  naming_flags({{"FOV", "--fov"},
+                {"cell size", "--cell"},
+                {"rings", "--rings"},
+                {"bins", "--bins"},
+                {"sectors", "--sectors"}},
+               [&] { core::check_sectoral_grid(g); });
+}
+
 void run_narrow_ism(const IsmArgs& a) {
-  const core::GaussianBeamModel model{required(a.sigma, "--sigma is required without --fov"),
+  const core::GaussianBeamModel model{required(a.sigma, "--sigma", "without --fov"),
                                       a.k_d.value_or(0.0)};
-  const double cell = required(a.cell, "--cell is required without --fov");
-  const double length = required(a.length, "--length is required without --fov");
-  const double z = required(a.z, "--z is required");
-  core::check_model(model);
-  if (!(cell > 0.0) || !std::isfinite(cell))
-    throw std::invalid_argument("--cell must be a positive number of metres");
+  const double cell = required(a.cell, "--cell", "without --fov");
+  const double length = required(a.length, "--length", "without --fov");
+  const double z = required(a.z, "--z", "(unless --fov with --agreement)");
   const auto cells = static_cast<std::size_t>(std::llround(length / cell));
-  if (cells == 0) throw std::invalid_argument("--length must hold at least one cell");
-  if (cells > 100'000'000) throw std::invalid_argument("--length / --cell exceeds 10^8 cells");
-  if (!std::isfinite(z)) throw std::invalid_argument("--z must be finite");
+  if (cells == 0) bad_option("--length", "must hold at least one cell of --cell");
+  if (cells > 100'000'000) bad_option("--length", "holds more than 10^8 cells of --cell");
   std::optional<core::SepsCodec> codec;
   if (a.bits || a.eps) codec.emplace(a.bits.value_or(8), a.eps.value_or(0.05));
   const std::vector<double> ism = core::narrow_ism(model, z, cell, cells);
@@ -115,11 +145,11 @@ void run_sectoral_ism(const IsmArgs& a) {
   grid.fov = figures::radians(*a.fov_degrees);
   grid.cell = a.cell.value_or(grid.cell);
   core::ConeSensorModel model = a.model;
+  model.sigma0 = a.sigma.value_or(model.sigma0);
   model.k_d = a.k_d.value_or(model.k_d);
-  core::check_sectoral_grid(grid);
-  core::check_model(model);
+  check_grid_options(grid, a.arithmetic == core::Arithmetic::integer || a.agreement);
   if ((a.bits || a.eps) && a.arithmetic == core::Arithmetic::floating && !a.agreement)
-    throw std::invalid_argument("with --fov, --bits and --eps need --arith int or --agreement");
+    throw OptionError("with --fov, --bits and --eps need --arith int or --agreement");
   const core::SepsCodec codec(a.bits.value_or(8), a.eps.value_or(0.05));
   if (a.agreement) {
     const KernelAgreementReport report =
@@ -127,7 +157,7 @@ void run_sectoral_ism(const IsmArgs& a) {
     if (a.json) return print_json(kernel_agreement_json(report));
     return print_kernel_agreement(report);
   }
-  double z = required(a.z, "--z is required (unless --agreement)");
+  double z = required(a.z, "--z", "(unless --agreement)");
   check_reading_option(z);
   std::vector<std::int16_t> indices;
   if (a.arithmetic == core::Arithmetic::integer) {
@@ -154,59 +184,66 @@ void run_sectoral_ism(const IsmArgs& a) {
 
 void add_ism_command(CLI::App& app) {
   auto a = std::make_shared<IsmArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "ism",
-      "print the exact ISM of a reading: narrow FOV (eq. 2.12) as CSV k,d,p; with --fov the "
-      "large-FOV ISM over the sensor's polar grid as CSV ring,bin,p");
+  CLI::App* cmd = app.add_subcommand("ism", "the exact ISM of one reading, as CSV or JSON");
   cmd->footer(
-      "Narrow FOV needs --sigma, --cell, --z and --length. --fov selects the large FOV, with "
-      "the cone model of docs/algorithms.md 3: sigma = sigma0 (1 + k_d d) (1 + k_theta theta) "
-      "(1 + k_size / |S|) / (1 + k_size). With --arith int, the index column is the integer "
-      "kernel's at the fixed-point reading nearest z, and p the double ISM at that same reading.");
+      "Narrow FOV (eq. 2.12): needs --sigma, --cell, --z and --length; CSV k,d,p, one row a "
+      "cell. --fov selects the large FOV over the sensor's polar grid, CSV ring,bin,p, with the "
+      "cone model of docs/algorithms.md 3: sigma = sigma0 (1 + k_d d) (1 + k_theta theta) "
+      "(1 + k_size / |S|) / (1 + k_size), sigma0 being --sigma. With --arith int, the index "
+      "column is the integer kernel's at the fixed-point reading nearest z, and p the double ISM "
+      "at that same reading.");
   CLI::Option* fov = cmd->add_option("--fov", a->fov_degrees,
-                                     "large-FOV mode: the sensor's field of view (degrees)");
+                                     "large-FOV mode: the sensor's field of view (degrees)")
+                         ->check(real_range(0.0, 180.0, true, true));
   // Both modes.
+  cmd->add_option("--sigma,--sigma0", a->sigma,
+                  "sensor standard deviation at distance 0 (m) (with --fov: default 0.02)")
+      ->check(positive());
   cmd->add_option("--k-d", a->k_d,
-                  "relative growth of sigma per metre (default 0; with --fov 0.05)");
-  cmd->add_option("--cell", a->cell, "cell size (m) (with --fov: default 0.05)");
-  CLI::Option* z = cmd->add_option("--z", a->z, "the reading (m)");
+                  "relative growth of sigma per metre (default 0; with --fov 0.05)")
+      ->check(non_negative());
+  cmd->add_option("--cell", a->cell, "cell size (m) (with --fov: default 0.05)")->check(positive());
+  CLI::Option* z = cmd->add_option("--z", a->z, "the reading (m)")->check(finite());
   cmd->add_option("--bits", a->bits,
                   "S_eps index width (default 8); without --fov, adds the index column")
-      ->check(CLI::Range(2, 16));
-  cmd->add_option("--eps", a->eps, "eps of S_eps (default 0.05)")->check(CLI::Range(0.0, 0.5));
+      ->transform(whole_range(2, 16));
+  cmd->add_option("--eps", a->eps, "eps of S_eps (default 0.05)")
+      ->check(real_range(0.0, 0.5, true, true));
   cmd->add_flag("--json", a->json, "print JSON instead of CSV");
   // Narrow FOV.
-  cmd->add_option("--sigma", a->sigma, "sensor standard deviation (m)")
-      ->check(CLI::PositiveNumber)
-      ->excludes(fov);
   cmd->add_option("--length", a->length, "length of the line of sight (m)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->excludes(fov);
   // Large FOV.
   cmd->add_option("--bins", a->grid.bins, "angular bins across the FOV (A)")
+      ->transform(whole_range(1, core::kMaxBins))
       ->capture_default_str()
       ->needs(fov);
-  cmd->add_option("--rings", a->grid.rings, "range rings (R)")->capture_default_str()->needs(fov);
+  cmd->add_option("--rings", a->grid.rings, "range rings (R)")
+      ->transform(whole_range(1, 100'000'000))
+      ->capture_default_str()
+      ->needs(fov);
   cmd->add_option("--sectors", a->grid.sectors, "sectors (Ns), dividing the bins")
-      ->capture_default_str()
-      ->needs(fov);
-  cmd->add_option("--sigma0", a->model.sigma0, "standard deviation at distance 0 (m)")
+      ->transform(whole_range(1, core::kMaxSectors))
       ->capture_default_str()
       ->needs(fov);
   cmd->add_option("--k-theta", a->model.k_theta, "relative growth of sigma at the FOV's edge")
+      ->check(non_negative())
       ->capture_default_str()
       ->needs(fov);
   cmd->add_option("--k-size", a->model.k_size, "relative growth of sigma for a one-sector obstacle")
+      ->check(non_negative())
       ->capture_default_str()
       ->needs(fov);
   CLI::Option* agreement =
       cmd->add_option("--agreement", a->agreement,
                       "instead of the ISM, print the integer kernel's agreement with the "
                       "quantized double ISM over this many random readings and the edge readings")
-          ->check(CLI::Range(0.0, 1e7))
+          ->transform(whole_range(0, 10'000'000))
           ->needs(fov)
           ->excludes(z);
   cmd->add_option("--seed", a->seed, "seed of the random readings of --agreement")
+      ->transform(seed_number())
       ->capture_default_str()
       ->needs(agreement);
   add_arithmetic_option(*cmd, a->arithmetic,
@@ -218,7 +255,9 @@ void add_ism_command(CLI::App& app) {
   cmd->add_option("--png", a->png, "also write the ISM (the p column) as a picture of the FOV")
       ->needs(fov)
       ->excludes(agreement);
-  cmd->callback([a] { a->fov_degrees ? run_sectoral_ism(*a) : run_narrow_ism(*a); });
+  cmd->callback([a] {
+    naming_flags(ism_flags(), [&] { a->fov_degrees ? run_sectoral_ism(*a) : run_narrow_ism(*a); });
+  });
 }
 
 }  // namespace intgrid::cli

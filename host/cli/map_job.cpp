@@ -1,20 +1,54 @@
 #include "cli/map_job.hpp"
 
 #include <chrono>
+#include <stdexcept>
+#include <string>
 
+#include "cli/options.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/io/image_io.hpp"
+#include "intgrid/io/input_error.hpp"
 #include "intgrid/io/log_io.hpp"
 #include "intgrid/io/map_io.hpp"
 
 namespace intgrid::cli {
 namespace {
 
+// The golden model's fields -> the options of `map` (and `demo`) that set them.
+FieldFlags map_flags(const MapJobOptions& o) {
+  return {{"sigma", "--sigma"},
+          {"k_d", "--k-d"},
+          {"cell size", "--cell"},
+          {"resolution", "--cell"},
+          {"index width", "--bits"},
+          {"eps", o.eps ? "--eps" : "--levels"},
+          {"the number of levels", "--levels"}};
+}
+
 core::SepsCodec codec_for(const MapJobOptions& o) {
   if (o.eps) return core::SepsCodec(o.bits, *o.eps);
-  return core::SepsCodec::for_levels(o.bits, core::narrow_pmax(o.resolution, o.model.sigma0),
-                                     o.levels);
+  const double pmax = core::narrow_pmax(o.resolution, o.model.sigma0);
+  if (!(pmax > 0.5 && pmax < 1.0))
+    bad_option("--sigma", option_number(o.model.sigma0) + " m with " + option_number(o.resolution) +
+                              " m cells gives the ISM a Pmax of " + option_number(pmax) +
+                              ", outside (1/2, 1), so --levels cannot set eps: give --eps");
+  return core::SepsCodec::for_levels(o.bits, pmax, o.levels);
+}
+
+// The grid covering the log; a log without a valid reading is a bad input file, a grid too big
+// for the cell size a bad --cell.
+core::GridGeometry geometry_for(const core::Log& log, const MapJobOptions& o) {
+  try {
+    return core::geometry_covering(log.scans, o.resolution, o.margin);
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    if (what.find("valid reading") != std::string::npos)
+      throw io::InputError(o.log, 0, "ranges", what);
+    if (what.find("2^32") != std::string::npos)
+      bad_option("--cell", option_number(o.resolution) + " m is too fine for the log: " + what);
+    rethrow_naming_flags(e, map_flags(o));
+  }
 }
 
 template <class Index>
@@ -28,11 +62,8 @@ core::ProbabilityGrid map_with_indices(const core::Log& log, const MapJobOptions
       core::map_indices(log.scans, inserter, geometry, stats, std::ref(progress)), codec);
 }
 
-}  // namespace
-
-MapJobResult run_map_job(const MapJobOptions& o) {
-  const core::Log log = io::read_log(o.log);
-  const core::GridGeometry geometry = core::geometry_covering(log.scans, o.resolution, o.margin);
+MapJobResult map_log(const core::Log& log, const core::GridGeometry& geometry,
+                     const MapJobOptions& o) {
   MapJobResult result;
   const auto start = std::chrono::steady_clock::now();
   if (o.arithmetic == core::Arithmetic::integer) {
@@ -46,6 +77,15 @@ MapJobResult run_map_job(const MapJobOptions& o) {
         core::map_probabilities(log.scans, o.model, geometry, result.stats, std::ref(progress));
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+MapJobResult run_map_job(const MapJobOptions& o) {
+  const core::Log log = io::read_log(o.log);
+  const core::GridGeometry geometry = geometry_for(log, o);
+  const MapJobResult result = naming_flags(map_flags(o), [&] { return map_log(log, geometry, o); });
 
   std::filesystem::create_directories(o.out);
   io::write_ros_map(o.out / "map.yaml", io::RosMap{result.map});

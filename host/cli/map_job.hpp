@@ -13,7 +13,7 @@ namespace intgrid::cli {
 struct MapJobOptions {
   std::filesystem::path log;
   std::filesystem::path out;
-  double resolution = 0.05;
+  double resolution = 0.05;  // cell size (m): --cell
   core::Arithmetic arithmetic = core::Arithmetic::integer;
   core::GaussianBeamModel model{0.05, 0.0};
   int bits = 8;

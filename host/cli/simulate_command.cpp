@@ -1,7 +1,6 @@
 // `intgrid simulate`: a seeded simulated run (docs/algorithms.md 8) written as a log with noisy
 // odometry, the same scans with the true poses (a reference log), the world map and a picture.
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -12,7 +11,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "cli/commands.hpp"
@@ -35,7 +33,7 @@ struct SimulateArgs {
   std::optional<std::filesystem::path> world;
   bool floorplan = false;
   std::optional<std::filesystem::path> trajectory;
-  std::string seed = "1";
+  std::uint64_t seed = 1;
   std::optional<long long> scans;
   std::string sensor = "lidar";
   std::optional<long long> beams;
@@ -52,25 +50,25 @@ struct SimulateArgs {
   double period = 0.2;
 };
 
-[[noreturn]] void bad_option(const std::string& option, const std::string& message) {
-  throw std::invalid_argument(option + " " + message);
-}
-
-void require_positive(double v, const char* option, const char* unit) {
-  if (!(v > 0.0) || !std::isfinite(v))
-    bad_option(option, std::string("must be a positive number (") + unit + "), got " +
-                           io::format_number(v));
-}
-
-void require_non_negative(double v, const char* option, const char* unit) {
-  if (!(v >= 0.0) || !std::isfinite(v))
-    bad_option(option,
-               std::string("must be a number >= 0 (") + unit + "), got " + io::format_number(v));
-}
-
-void require_probability(double v, const char* option) {
-  if (!(v >= 0.0 && v <= 1.0))
-    bad_option(option, "must be a probability in [0, 1], got " + io::format_number(v));
+// The simulator's fields, as its checks name them -> the options that set them.
+const FieldFlags& simulation_flags() {
+  static const FieldFlags flags = {{"trajectory.scans", "--scans"},
+                                   {"trajectory.speed", "--speed"},
+                                   {"trajectory.scan_period", "--period"},
+                                   {"sensor.beams", "--beams"},
+                                   {"sensor.max_range", "--max-range"},
+                                   {"sensor.cone_fov", "--fov"},
+                                   {"noise.sigma", "--noise"},
+                                   {"noise.dropout", "--dropout"},
+                                   {"noise.contamination", "--contamination"},
+                                   {"odometry.alpha1", "--odometry-noise"},
+                                   {"odometry.alpha2", "--odometry-noise"},
+                                   {"odometry.alpha3", "--odometry-noise"},
+                                   {"odometry.alpha4", "--odometry-noise"},
+                                   {"obstacles.count", "--obstacles"},
+                                   {"obstacles.large_distance", "--large-obstacle"},
+                                   {"true_poses", "--trajectory"}};
+  return flags;
 }
 
 // "A1,A2,A3,A4": four finite numbers >= 0.
@@ -91,33 +89,19 @@ simulation::OdometryNoiseConfig parse_odometry_noise(const std::string& text) {
   return {values[0], values[1], values[2], values[3]};
 }
 
-// A seed: decimal digits only, below 2^64.
-std::uint64_t parse_seed(const std::string& text) {
-  std::uint64_t seed = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), seed);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size())
-    bad_option("--seed", "must be a whole number from 0 to 2^64 - 1, got '" + text + "'");
-  return seed;
-}
-
 double radians(double degrees) {
   return degrees * std::numbers::pi / 180.0;
 }
 
 simulation::SensorConfig sensor_from(const SimulateArgs& a) {
-  if (a.sensor != "lidar" && a.sensor != "cone")
-    bad_option("--sensor", "must be lidar or cone, got '" + a.sensor + "'");
   const bool lidar = a.sensor == "lidar";
   const long long beams = a.beams.value_or(lidar ? 361 : 16);
-  if (beams < 1 || beams > 100000)
-    bad_option("--beams", "must be 1 to 100000, got " + std::to_string(beams));
   const double fov = a.fov.value_or(lidar ? 180.0 : 30.0);
   if (lidar && !(fov > 0.0 && fov <= 360.0))
-    bad_option("--fov", "must be in (0, 360] degrees for a lidar, got " + io::format_number(fov));
+    bad_option("--fov", "must be in (0, 360] degrees for a lidar, got " + option_number(fov));
   if (!lidar && !(fov > 0.0 && fov < 180.0))
-    bad_option("--fov", "must be in (0, 180) degrees for a cone, got " + io::format_number(fov));
+    bad_option("--fov", "must be in (0, 180) degrees for a cone, got " + option_number(fov));
   const double max_range = a.max_range.value_or(lidar ? 8.0 : 5.0);
-  require_positive(max_range, "--max-range", "m");
   const auto n = static_cast<std::size_t>(beams);
   return lidar ? simulation::lidar_sensor(n, radians(fov), max_range)
                : simulation::cone_ring_sensor(n, radians(fov), max_range);
@@ -134,20 +118,21 @@ std::vector<core::Pose2> reference_poses(const std::filesystem::path& file,
   if (scans) {
     if (static_cast<std::size_t>(*scans) > poses.size())
       bad_option("--scans", std::to_string(*scans) + " exceeds the " +
-                                std::to_string(poses.size()) + " scans of " + file.string());
+                                std::to_string(poses.size()) + " scans of --trajectory " +
+                                file.string());
     poses.resize(static_cast<std::size_t>(*scans));
   }
   return poses;
 }
 
-// The golden model names its own fields; the one the command line can still get wrong after
-// checking its options is the obstacle count.
-[[noreturn]] void rethrow_with_option(const std::invalid_argument& e) {
-  const std::string what = e.what();
-  const std::string field = "obstacles.count:";
-  if (what.rfind(field, 0) == 0)
-    throw std::invalid_argument("--obstacles" + what.substr(field.size()));
-  throw e;
+// "floorplan.door: must be at least 3 cells wide" -> "its door must be at least 3 cells wide".
+std::string floorplan_problem(const std::string& what) {
+  const std::string prefix = "floorplan.";
+  const std::size_t colon = what.find(": ");
+  if (what.rfind(prefix, 0) != 0 || colon == std::string::npos) return what;
+  std::string field = what.substr(prefix.size(), colon - prefix.size());
+  std::replace(field.begin(), field.end(), '_', ' ');
+  return "its " + field + " " + what.substr(colon + 2);
 }
 
 void write_picture(const std::filesystem::path& file, const simulation::Simulation& sim) {
@@ -179,22 +164,10 @@ void write_picture(const std::filesystem::path& file, const simulation::Simulati
 }
 
 void run_simulate(const SimulateArgs& a) {
-  if (a.world && a.floorplan) bad_option("--world", "and --floorplan exclude each other");
   if (a.world && a.cell)
     bad_option("--cell", "sets the floorplan's cell size; a --world map has its own resolution");
-  if (a.scans && (*a.scans < 1 || *a.scans > 10'000'000))
-    bad_option("--scans", "must be 1 to 10000000, got " + std::to_string(*a.scans));
-  if (a.obstacles < 0 || a.obstacles > 1'000'000)
-    bad_option("--obstacles", "must be 0 to 1000000, got " + std::to_string(a.obstacles));
-  require_non_negative(a.noise, "--noise", "m");
-  require_probability(a.dropout, "--dropout");
-  require_probability(a.contamination, "--contamination");
-  if (a.large_obstacle) require_non_negative(*a.large_obstacle, "--large-obstacle", "m");
-  require_positive(a.speed, "--speed", "m/s");
-  require_positive(a.period, "--period", "s");
   const double cell = a.cell.value_or(simulation::FloorplanConfig{}.cell);
-  require_positive(cell, "--cell", "m");
-  const std::uint64_t seed = parse_seed(a.seed);
+  const std::uint64_t seed = a.seed;
 
   simulation::SimulationConfig config;
   config.sensor = sensor_from(a);
@@ -228,19 +201,16 @@ void run_simulate(const SimulateArgs& a) {
     try {
       plan = simulation::make_floorplan(floorplan, seed);
     } catch (const std::invalid_argument& e) {
-      bad_option("--cell", io::format_number(cell) + " m does not suit the floorplan: " + e.what());
+      bad_option("--cell", option_number(cell) +
+                               " m does not suit the floorplan: " + floorplan_problem(e.what()));
     }
     world.grid = std::move(plan.grid);
     config.route = std::move(plan.corridor_loop);
   }
   if (a.trajectory) config.true_poses = reference_poses(*a.trajectory, a.scans);
 
-  simulation::Simulation sim;
-  try {
-    sim = simulation::simulate(world.grid, config, seed);
-  } catch (const std::invalid_argument& e) {
-    rethrow_with_option(e);
-  }
+  const simulation::Simulation sim = naming_flags(
+      simulation_flags(), [&] { return simulation::simulate(world.grid, config, seed); });
 
   std::filesystem::create_directories(a.out);
   const std::filesystem::path log = a.out / "sim.log", truth = a.out / "truth.log",
@@ -284,60 +254,79 @@ void run_simulate(const SimulateArgs& a) {
 void add_simulate_command(CLI::App& app) {
   auto a = std::make_shared<SimulateArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "simulate",
-      "a seeded simulated run: DIR/sim.log (scans with noisy odometry), DIR/truth.log (the same "
-      "scans with the true poses), DIR/world.yaml + world.pgm (the map, without the unmodelled "
-      "obstacles) and DIR/world.png (true path red, odometry blue, start green, unmodelled "
-      "obstacles orange)");
+      "simulate", "a seeded simulated run: a log, its true poses, the world map and a picture");
   cmd->footer(
+      "Writes DIR/sim.log (scans with noisy odometry), DIR/truth.log (the same scans with the "
+      "true poses), DIR/world.yaml + world.pgm (the map, without the unmodelled obstacles) and "
+      "DIR/world.png (true path red, odometry blue, start green, unmodelled obstacles orange). "
       "The world is a procedural office floor (20 x 15 m: rooms, a corridor loop, doors, "
       "furniture; the robot drives the corridor loop) unless --world gives a ROS map, where the "
       "robot goes between random waypoints keeping 0.3 m from anything not free. Readings that "
       "hit nothing within --max-range are 0 (no return). The same seed gives the same files, "
       "byte for byte.");
   cmd->add_option("--out", a->out, "output folder")->required();
-  cmd->add_option("--world", a->world,
-                  "world map (ROS map_server YAML); its occupied_thresh stops rays, cells below "
-                  "its free_thresh are free");
+  CLI::Option* world = cmd->add_option(
+      "--world", a->world,
+      "world map (ROS map_server YAML); its occupied_thresh stops rays, cells below its "
+      "free_thresh are free");
   cmd->add_flag("--floorplan", a->floorplan,
-                "world: the procedural floorplan, built from the seed (the default)");
+                "world: the procedural floorplan, built from the seed (the default)")
+      ->excludes(world);
   cmd->add_option("--trajectory", a->trajectory,
                   "true poses: those of this reference log's scans instead of a generated path");
-  cmd->add_option("--seed", a->seed, "seed of everything random")->capture_default_str();
-  cmd->add_option("--scans", a->scans,
-                  "number of scans (default 400; with --trajectory all of its scans)");
-  cmd->add_option("--speed", a->speed, "robot speed (m/s); turn rate 1 rad/s")
+  cmd->add_option("--seed", a->seed, "seed of everything random")
+      ->transform(seed_number())
       ->capture_default_str();
-  cmd->add_option("--period", a->period, "time between scans (s)")->capture_default_str();
+  cmd->add_option("--scans", a->scans,
+                  "number of scans (default 400; with --trajectory all of its scans)")
+      ->transform(whole_range(1, 10'000'000));
+  cmd->add_option("--speed", a->speed, "robot speed (m/s); turn rate 1 rad/s")
+      ->check(positive())
+      ->capture_default_str();
+  cmd->add_option("--period", a->period, "time between scans (s)")
+      ->check(positive())
+      ->capture_default_str();
   cmd->add_option("--sensor", a->sensor,
                   "lidar (one ray a beam) or cone (a ring of cones, each reading the nearest hit "
                   "within its FOV)")
+      ->transform(one_of({"lidar", "cone"}))
+      ->type_name("lidar|cone")
       ->capture_default_str();
-  cmd->add_option("--beams", a->beams, "beams of the lidar (default 361) or cones (default 16)");
+  cmd->add_option("--beams", a->beams, "beams of the lidar (default 361) or cones (default 16)")
+      ->transform(whole_range(1, 100'000));
   cmd->add_option("--fov", a->fov,
                   "degrees: the lidar's span (default 180; 360 = all round) or each cone's FOV "
-                  "(default 30)");
-  cmd->add_option("--max-range", a->max_range, "sensor range (m; default lidar 8, cone 5)");
+                  "(default 30)")
+      ->check(real_range(0.0, 360.0, true, false));
+  cmd->add_option("--max-range", a->max_range, "sensor range (m; default lidar 8, cone 5)")
+      ->check(positive());
   cmd->add_option("--noise", a->noise, "standard deviation of the Gaussian range noise (m)")
+      ->check(non_negative())
       ->capture_default_str();
   cmd->add_option("--dropout", a->dropout, "probability that a reading is 0 (no return)")
+      ->check(probability())
       ->capture_default_str();
   cmd->add_option("--contamination", a->contamination,
                   "probability that a reading is replaced by a uniform range in (0, max range)")
+      ->check(probability())
       ->capture_default_str();
   cmd->add_option("--obstacles", a->obstacles,
                   "small unmodelled obstacles (discs of 0.2 to 0.4 m) in free space, at least "
                   "0.5 m from the true path: seen by the sensor, absent from the map")
+      ->transform(whole_range(0, 1'000'000))
       ->capture_default_str();
   cmd->add_option("--large-obstacle", a->large_obstacle,
-                  "also one unmodelled disc of 1 m this far (m) straight ahead of the first pose");
+                  "also one unmodelled disc of 1 m this far (m) straight ahead of the first pose")
+      ->check(non_negative());
   cmd->add_option(
          "--odometry-noise", a->odometry_noise,
          "alphas of the odometry motion model (Probabilistic Robotics, table 5.6): variances "
          "rot1 A1 rot1^2 + A2 trans^2, trans A3 trans^2 + A4 (rot1^2 + rot2^2), rot2 "
          "A1 rot2^2 + A2 trans^2; 0,0,0,0 = exact odometry")
+      ->type_name("A1,A2,A3,A4")
       ->capture_default_str();
-  cmd->add_option("--cell", a->cell, "cell size of the floorplan (m; default 0.1)");
+  cmd->add_option("--cell", a->cell, "cell size of the floorplan (m; default 0.1)")
+      ->check(positive());
   cmd->callback([a] { run_simulate(*a); });
 }
 

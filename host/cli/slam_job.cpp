@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/io/atomic_file.hpp"
 #include "intgrid/io/image_io.hpp"
@@ -41,6 +42,7 @@ std::vector<core::Pose2> positions(const std::vector<slam::TimedPose>& poses) {
 }  // namespace
 
 SlamJobResult run_slam_job(const SlamJobOptions& o) {
+  check_slam_options(o.config);
   const core::Log log = io::read_log(o.log);
   std::optional<core::Log> reference;
   if (o.reference) reference = io::read_log(*o.reference);
@@ -88,14 +90,14 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                {"e_sigma_m", r.run.mean_sigma()},
                {"settings",
                 {{"res", c.cell},
-                 {"lambda", c.lambda},
-                 {"xi", c.xi},
-                 {"beams", c.beams},
+                 {"lambda", c.schedule.lambda},
+                 {"xi", c.schedule.xi},
+                 {"beams", c.beam.beams},
                  {"headings", c.headings},
-                 {"window_cells", c.window_cells},
-                 {"window_headings", c.window_headings},
-                 {"sigma", c.sigma},
-                 {"max_range", c.max_range},
+                 {"window_cells", c.window.cells},
+                 {"window_headings", c.window.headings},
+                 {"sigma", c.beam.sigma},
+                 {"max_range", c.beam.max_range},
                  {"eps", r.run.codec.eps()}}}};
   if (r.ate) {
     r.metrics["reference"] = o.reference->string();

@@ -47,8 +47,8 @@ struct RunSpec {
   Sweep sweep = Sweep::lambda;
   int lambda = 1;
   int xi = 1;
-  int window_cells = slam::SlamConfig{}.window_cells;
-  int window_headings = slam::SlamConfig{}.window_headings;
+  int window_cells = slam::SlamConfig{}.window.cells;
+  int window_headings = slam::SlamConfig{}.window.headings;
   std::size_t scans = 0;  // the first scans of the log
   core::Arithmetic arithmetic = core::Arithmetic::integer;
 
@@ -125,10 +125,10 @@ core::ProbabilityGrid on_grid(const core::ProbabilityGrid& built, const core::Gr
 RunResult run_one(const World& world, const slam::SlamConfig& base, const RunSpec& spec,
                   const core::Progress& progress) {
   slam::SlamConfig config = base;
-  config.lambda = spec.lambda;
-  config.xi = spec.xi;
-  config.window_cells = spec.window_cells;
-  config.window_headings = spec.window_headings;
+  config.schedule.lambda = spec.lambda;
+  config.schedule.xi = spec.xi;
+  config.window.cells = spec.window_cells;
+  config.window.headings = spec.window_headings;
   const core::Log log = first_scans(world.sim.log, spec.scans);
 
   RunResult r;
@@ -168,7 +168,8 @@ struct Plan {
 
   // The xi sweep's point xi is the lambda sweep's point base.lambda.
   bool xi_borrows(int xi) const {
-    return xi == base.xi && std::find(lambdas.begin(), lambdas.end(), base.lambda) != lambdas.end();
+    return xi == base.schedule.xi &&
+           std::find(lambdas.begin(), lambdas.end(), base.schedule.lambda) != lambdas.end();
   }
 };
 
@@ -199,11 +200,12 @@ std::vector<RunSpec> make_specs(const Plan& p) {
   };
   const slam::SlamConfig& b = p.base;
   for (const int lambda : p.lambdas)
-    both({Sweep::lambda, lambda, b.xi, b.window_cells, b.window_headings, p.scans});
+    both({Sweep::lambda, lambda, b.schedule.xi, b.window.cells, b.window.headings, p.scans});
   for (const int xi : p.xis)
     if (!p.xi_borrows(xi))
-      both({Sweep::xi, b.lambda, xi, b.window_cells, b.window_headings, p.scans});
-  for (const int w : p.windows) both({Sweep::depth, b.lambda, b.xi, w, w, p.depth_scans});
+      both({Sweep::xi, b.schedule.lambda, xi, b.window.cells, b.window.headings, p.scans});
+  for (const int w : p.windows)
+    both({Sweep::depth, b.schedule.lambda, b.schedule.xi, w, w, p.depth_scans});
   return specs;
 }
 
@@ -229,8 +231,9 @@ std::vector<const RunResult*> sweep_rows(const std::vector<RunResult>& results, 
   }
   for (const int xi : plan.xis)
     for (const RunResult& r : results)
-      if (plan.xi_borrows(xi) ? r.spec.sweep == Sweep::lambda && r.spec.lambda == plan.base.lambda
-                              : r.spec.sweep == Sweep::xi && r.spec.xi == xi)
+      if (plan.xi_borrows(xi)
+              ? r.spec.sweep == Sweep::lambda && r.spec.lambda == plan.base.schedule.lambda
+              : r.spec.sweep == Sweep::xi && r.spec.xi == xi)
         rows.push_back(&r);
   return rows;
 }
@@ -468,8 +471,9 @@ bool write_plots(const SlamSweepOptions& o, const std::vector<Point>& lambda,
       depth_png(o.out / "slam_depth.png");
   return figures::draw_pngs(
       o.gnuplot,
-      plot_script(lambda, xi, depth, title, probe.cairo, o.config.lambda, o.config.xi,
-                  lambda_png.temporary_path(), xi_png.temporary_path(), depth_png.temporary_path()),
+      plot_script(lambda, xi, depth, title, probe.cairo, o.config.schedule.lambda,
+                  o.config.schedule.xi, lambda_png.temporary_path(), xi_png.temporary_path(),
+                  depth_png.temporary_path()),
       o.out / "slam_plots.gp", {&lambda_png, &xi_png, &depth_png});
 }
 
@@ -498,13 +502,13 @@ slam::SlamConfig default_sweep_config() {
   slam::SlamConfig c;
   c.cell = 0.1;
   c.headings = 256;
-  c.window_headings = 21;  // +-14.8 degrees
+  c.window.headings = 21;  // +-14.8 degrees
   // The thesis's pose grid: every pose weighed at every localization, so that the size sweep
   // measures the cost of the grid (figure 3.14), not of the poses the motion model reaches.
-  c.pose_prune = 0.0;
+  c.window.pose_prune = 0.0;
   // The simulated floor's readings are independent given the map, so its beams need little
   // tempering: at the real log's 16 its ATE doubles (README).
-  c.tempering = 3;
+  c.beam.tempering = 3;
   return c;
 }
 
@@ -512,7 +516,7 @@ void run_slam_sweeps(const SlamSweepOptions& o) {
   const auto wall_start = std::chrono::steady_clock::now();
   const Plan plan = make_plan(o);
   if (plan.scans < 2) throw std::invalid_argument("--scans must be at least 2");
-  slam::check_slam_config(plan.base);
+  check_slam_options(plan.base);
   std::filesystem::create_directories(o.out);
   const World world = make_world(o.seed, plan.scans);
   const std::vector<RunSpec> specs = make_specs(plan);
@@ -542,7 +546,8 @@ void run_slam_sweeps(const SlamSweepOptions& o) {
   write_csv(o.out / "slam_xi.csv", xi_rows);
   write_csv(o.out / "slam_depth.csv", depth_rows);
   const auto base_run = std::find_if(lambda_rows.begin(), lambda_rows.end(), [&](auto* r) {
-    return r->spec.lambda == plan.base.lambda && r->spec.arithmetic == core::Arithmetic::integer;
+    return r->spec.lambda == plan.base.schedule.lambda &&
+           r->spec.arithmetic == core::Arithmetic::integer;
   });
   write_world_png(o.out / "slam_world.png", world,
                   **(base_run == lambda_rows.end() ? lambda_rows.begin() : base_run), plan.base,
@@ -563,15 +568,15 @@ void run_slam_sweeps(const SlamSweepOptions& o) {
       static_cast<unsigned long long>(o.seed), plan.scans, kSpeed, 100 * world.odometry_ate.rmse,
       100 * world.odometry_ate.max);
   std::printf("SLAM: %g cm cells, %d headings a turn, %d beams a localization\n", 100 * b.cell,
-              b.headings, b.beams);
+              b.headings, b.beam.beams);
   const std::string window =
-      io::printed("pose grid %d x %d x %d", b.window_cells, b.window_cells, b.window_headings);
-  print_table(io::printed("lambda sweep (xi = %d, %s):", b.xi, window.c_str()).c_str(), "lambda",
-              lambda, [](const RunSpec& s) { return s.lambda; });
-  print_table(io::printed("xi sweep (lambda = %d, %s):", b.lambda, window.c_str()).c_str(), "xi",
-              xi, [](const RunSpec& s) { return s.xi; });
-  std::printf("\npose-grid size sweep (lambda = %d, xi = %d, first %zu scans):\n", b.lambda, b.xi,
-              plan.depth_scans);
+      io::printed("pose grid %d x %d x %d", b.window.cells, b.window.cells, b.window.headings);
+  print_table(io::printed("lambda sweep (xi = %d, %s):", b.schedule.xi, window.c_str()).c_str(),
+              "lambda", lambda, [](const RunSpec& s) { return s.lambda; });
+  print_table(io::printed("xi sweep (lambda = %d, %s):", b.schedule.lambda, window.c_str()).c_str(),
+              "xi", xi, [](const RunSpec& s) { return s.xi; });
+  std::printf("\npose-grid size sweep (lambda = %d, xi = %d, first %zu scans):\n",
+              b.schedule.lambda, b.schedule.xi, plan.depth_scans);
   std::printf("%8s %10s | %-21s | %-21s | %s\n", "window", "pose cells", "ms per scan int float",
               "ATE RMSE cm int float", "int/float");
   for (const Point& p : depth) {

@@ -15,6 +15,8 @@ set(_dir ${PROJECT_SOURCE_DIR}/testbench/cortex_m3)
 set(INTGRID_EMBEDDED_INPUTS_DIR ${PROJECT_BINARY_DIR}/embedded_inputs)
 add_executable(make_embedded_inputs ${_dir}/make_embedded_inputs.cpp)
 target_link_libraries(make_embedded_inputs PRIVATE intgrid_io intgrid_slam intgrid_localization)
+# Both programs include "testbench/cortex_m3/...", from the repository's root.
+target_include_directories(make_embedded_inputs PRIVATE ${PROJECT_SOURCE_DIR})
 set(_log ${INTGRID_DATA_DIR}/malaga_telecom_loop.log)
 set(_map ${INTGRID_DATA_DIR}/malaga_room_map.yaml)
 add_custom_command(
@@ -26,11 +28,11 @@ add_custom_command(
 
 add_executable(embedded_check ${_dir}/embedded_check.cpp ${_dir}/workload.cpp
                               ${INTGRID_EMBEDDED_INPUTS_DIR}/embedded_inputs.hpp)
-target_include_directories(embedded_check PRIVATE ${INTGRID_EMBEDDED_INPUTS_DIR})
+target_include_directories(embedded_check PRIVATE ${PROJECT_SOURCE_DIR} ${INTGRID_EMBEDDED_INPUTS_DIR})
 target_link_libraries(embedded_check PRIVATE intgrid_io intgrid_slam intgrid_localization)
 
 # The check as one script, which the test runs and scripts/embedded.sh runs with -DREPORT and
-# -DREADME to write the table.
+# -DRESULTS to write the table (docs/embedded.md, and its section in docs/results.md).
 set(INTGRID_EMBEDDED_CHECK_SCRIPT ${PROJECT_BINARY_DIR}/embedded_check.cmake)
 file(GENERATE OUTPUT ${INTGRID_EMBEDDED_CHECK_SCRIPT} CONTENT "\
 set(SOURCE_DIR ${PROJECT_SOURCE_DIR})

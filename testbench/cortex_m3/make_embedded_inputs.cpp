@@ -39,9 +39,9 @@ void write_array(std::ostringstream& out, const Values& values) {
 std::string header(const Log& log, const RosMap& map) {
   if (log.scans.size() < 2) throw std::runtime_error("the log needs at least two scans");
   SlamConfig config;
-  config.max_range = 8.0;
+  config.beam.max_range = 8.0;
   SlamRun run;
-  const std::vector<SlamScan> scans = quantize_scans(log, config, run);
+  const std::vector<QuantizedScan> scans = quantize_scans(log, config, run);
   const Scan& first = log.scans.front();
   const GridGeometry& g = map.grid.geometry;
   if (g.width < kWindow || g.height < kWindow)

@@ -59,8 +59,8 @@ double odometry_reach() {
   return 1.0 + (std::abs(inputs::kOdometry[0]) + std::abs(inputs::kOdometry[1])) / 1000.0;
 }
 
-SlamScan slam_scan(std::size_t i) {
-  SlamScan scan;
+QuantizedScan slam_scan(std::size_t i) {
+  QuantizedScan scan;
   scan.range_mm.assign(inputs::kRangesMm[i], inputs::kRangesMm[i] + inputs::kBeams);
   if (i == 1) {
     scan.odom_dx_mm = inputs::kOdometry[0];
@@ -73,14 +73,14 @@ SlamScan slam_scan(std::size_t i) {
 // lambda 1 localizes the second scan; lambda 2 does not.
 SlamConfig small_slam_config(int lambda) {
   SlamConfig c;
-  c.lambda = lambda;
-  c.window_cells = 5;
-  c.window_headings = 5;
-  c.beams = 30;
-  c.max_range = kMaxRangeMm / 1000.0;
-  c.sigma = kSigma;
-  c.map_margin = 1.0;
-  c.xi = 2;  // the second scan is localized, not mapped
+  c.schedule.lambda = lambda;
+  c.schedule.xi = 2;  // the second scan is localized, not mapped
+  c.window.cells = 5;
+  c.window.headings = 5;
+  c.beam.beams = 30;
+  c.beam.max_range = kMaxRangeMm / 1000.0;
+  c.beam.sigma = kSigma;
+  c.map.margin = 1.0;
   return c;
 }
 
@@ -168,7 +168,7 @@ struct Workload::State {
   SlamSetup motion_setup;
   GridSlam<IndexProbabilities> index_slam, index_motion;
   GridSlam<DoubleProbabilities> double_slam, double_motion;
-  SlamScan second_scan = slam_scan(1);
+  QuantizedScan second_scan = slam_scan(1);
   // Pose occupancy grid.
   LocalizationMap localization_map;
   ReadingClaims claims;

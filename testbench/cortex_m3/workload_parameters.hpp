@@ -15,12 +15,12 @@ inline constexpr std::int32_t kInsertionCellMm = 50;
 inline constexpr double kInsertionCell = kInsertionCellMm / 1000.0;  // m
 inline constexpr std::int32_t kInsertionZStepMm = kInsertionCellMm / 8;
 
-inline GaussianBeamModel beam_model() {
+inline core::GaussianBeamModel beam_model() {
   return {kSigma, 0.0};
 }
 // A reading's strongest occupied index is 16, on 8 bits.
-inline SepsCodec insertion_codec() {
-  return SepsCodec::for_levels(8, narrow_pmax(kInsertionCell, kSigma), 16);
+inline core::SepsCodec insertion_codec() {
+  return core::SepsCodec::for_levels(8, core::narrow_pmax(kInsertionCell, kSigma), 16);
 }
 
 }  // namespace intgrid::embedded

@@ -1,6 +1,7 @@
 // The map reader and writer on the bundled ROS maps, and a picture of the telecom map.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "intgrid/io/image_io.hpp"
@@ -39,6 +40,74 @@ TEST(BundledMaps, TelecomMapGeometry) {
   EXPECT_EQ(geometry.resolution, 0.05);
   EXPECT_EQ(geometry.origin_x, -45.0);
   EXPECT_EQ(geometry.origin_y, -51.0);
+}
+
+// The bundled map's YAML with image and an optional mode in place of its own.
+std::string room_yaml(const std::filesystem::path& image, const std::string& mode) {
+  std::string yaml = "image: " + image.string() +
+                     "\nresolution: 0.04\norigin: [-10, -10, 0.0]\nnegate: 0\n"
+                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  if (!mode.empty()) yaml += "mode: " + mode + "\n";
+  return yaml;
+}
+
+bool same_cell(double a, double b) {
+  return (std::isnan(a) && std::isnan(b)) || a == b;
+}
+
+TEST(BundledMaps, RoomMapAsPngReadsAsItsPgmInEveryMode) {
+  const test::TempDir dir;
+  const RosMap linear = read_ros_map(kDataDir / "malaga_room_map.yaml");
+  const GridGeometry& geometry = linear.grid.geometry;
+  RgbImage image(geometry.width, geometry.height);
+  for (int iy = 0; iy < geometry.height; ++iy) {
+    for (int ix = 0; ix < geometry.width; ++ix) {
+      const std::uint8_t v = probability_to_pixel(linear.grid.at(ix, iy));
+      image.set(ix, geometry.height - 1 - iy, {v, v, v});
+    }
+  }
+  write_png(dir / "room.png", image);
+  for (const std::string mode : {"", "trinary", "scale", "raw"}) {
+    SCOPED_TRACE("mode \"" + mode + "\"");
+    const RosMap pgm =
+        read_ros_map(dir.write("pgm.yaml", room_yaml(kDataDir / "malaga_room_map.pgm", mode)));
+    const RosMap png = read_ros_map(dir.write("png.yaml", room_yaml(dir / "room.png", mode)));
+    test::expect_same_geometry(png.grid.geometry, pgm.grid.geometry);
+    ASSERT_EQ(png.grid.cells.size(), pgm.grid.cells.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < pgm.grid.cells.size(); ++i) {
+      differing += !same_cell(png.grid.cells[i], pgm.grid.cells[i]);
+    }
+    EXPECT_EQ(differing, 0u);
+    if (mode.empty()) {
+      EXPECT_TRUE(pgm.grid.cells == linear.grid.cells);
+    }
+  }
+}
+
+// On the real map, trinary and scale against the thresholds applied to the mode-less grid.
+TEST(BundledMaps, RoomMapTrinaryAndScaleFollowTheThresholds) {
+  const test::TempDir dir;
+  const auto pgm = kDataDir / "malaga_room_map.pgm";
+  const RosMap linear = read_ros_map(kDataDir / "malaga_room_map.yaml");
+  const RosMap trinary = read_ros_map(dir.write("trinary.yaml", room_yaml(pgm, "trinary")));
+  const RosMap scale = read_ros_map(dir.write("scale.yaml", room_yaml(pgm, "scale")));
+  std::size_t occupied = 0, free = 0, unknown = 0, wrong = 0;
+  for (std::size_t i = 0; i < linear.grid.cells.size(); ++i) {
+    const double p = linear.grid.cells[i];
+    // No pixel of the map lies within rounding of the thresholds, so either formula decides.
+    const double expected = p > 0.65 ? 1.0 : p < 0.196 ? 0.0 : std::nan("");
+    occupied += expected == 1.0;
+    free += expected == 0.0;
+    unknown += std::isnan(expected);
+    wrong += !same_cell(trinary.grid.cells[i], expected);
+    const double kept = std::isnan(expected) ? p : expected;
+    wrong += !(std::abs(scale.grid.cells[i] - kept) <= 1e-15);
+  }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(occupied, 0u);
+  EXPECT_GT(free, 0u);
+  EXPECT_GT(unknown, 0u);
 }
 
 class BundledMapRoundTrip : public ::testing::TestWithParam<std::string> {};

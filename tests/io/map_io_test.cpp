@@ -3,10 +3,23 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <png.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <csetjmp>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
+#include "intgrid/io/image_io.hpp"
 #include "intgrid/io/input_error.hpp"
 #include "test_support.hpp"
 
@@ -220,13 +233,39 @@ TEST(RosMap, ThresholdMustBeAProbability) {
   expect_input_error([&] { read_ros_map(yaml); }, yaml, 5, "occupied_thresh");
 }
 
-TEST(RosMap, UnsupportedModeIsRejected) {
+TEST(RosMap, EveryMapServerModeIsAccepted) {
   const TempDir dir;
   dir.write("map.pgm", small_p5());
-  const auto trinary = dir.write("trinary.yaml", map_yaml("0.05", "[0, 0, 0]", "mode: trinary\n"));
-  EXPECT_EQ(read_ros_map(trinary).grid.geometry.width, 3);
-  const auto raw = dir.write("raw.yaml", map_yaml("0.05", "[0, 0, 0]", "mode: raw\n"));
-  expect_input_error([&] { read_ros_map(raw); }, raw, 7, "mode");
+  for (const char* mode : {"trinary", "scale", "raw"}) {
+    SCOPED_TRACE(mode);
+    const auto yaml =
+        dir.write("map.yaml", map_yaml("0.05", "[0, 0, 0]", std::string("mode: ") + mode + "\n"));
+    EXPECT_EQ(read_ros_map(yaml).grid.geometry.width, 3);
+  }
+}
+
+TEST(RosMap, UnknownModeNamesLineAndField) {
+  const TempDir dir;
+  dir.write("map.pgm", small_p5());
+  const auto yaml = dir.write("map.yaml", map_yaml("0.05", "[0, 0, 0]", "mode: ternary\n"));
+  const std::string message = expect_input_error([&] { read_ros_map(yaml); }, yaml, 7, "mode");
+  EXPECT_THAT(message, HasSubstr("\"ternary\""));
+  EXPECT_THAT(message, HasSubstr("trinary, scale or raw"));
+}
+
+TEST(RosMap, ModeNamesAreCaseSensitiveAsInMapServer) {
+  const TempDir dir;
+  dir.write("map.pgm", small_p5());
+  const auto yaml = dir.write("map.yaml", map_yaml("0.05", "[0, 0, 0]", "mode: Trinary\n"));
+  expect_input_error([&] { read_ros_map(yaml); }, yaml, 7, "mode");
+}
+
+TEST(RosMap, ModeMustBeASingleValue) {
+  const TempDir dir;
+  dir.write("map.pgm", small_p5());
+  const auto yaml = dir.write("map.yaml", map_yaml("0.05", "[0, 0, 0]", "\nmode: [trinary]\n"));
+  const std::string message = expect_input_error([&] { read_ros_map(yaml); }, yaml, 8, "mode");
+  EXPECT_THAT(message, HasSubstr("single value"));
 }
 
 TEST(RosMap, YamlSyntaxErrorNamesItsLine) {
@@ -299,6 +338,546 @@ TEST(RosMap, WriteRejectsGridWhoseCellsDisagreeWithGeometry) {
   map.grid.cells.pop_back();
   EXPECT_THROW(write_ros_map(dir / "bad.yaml", map), std::invalid_argument);
   EXPECT_EQ(dir.entry_count(), 0u);
+}
+
+// ---- Modes, on PGM maps ----
+
+constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+
+std::string p5(int width, int height, const std::vector<std::uint8_t>& pixels) {
+  std::string out = "P5\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+  out.append(pixels.begin(), pixels.end());
+  return out;
+}
+
+std::string mode_yaml(const std::string& image, const std::string& mode, bool negate,
+                      const std::string& occupied = "0.65", const std::string& free = "0.196") {
+  std::string yaml = "image: " + image +
+                     "\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: " + (negate ? "1" : "0") +
+                     "\noccupied_thresh: " + occupied + "\nfree_thresh: " + free + "\n";
+  if (!mode.empty()) yaml += "mode: " + mode + "\n";
+  return yaml;
+}
+
+// Exactly equal, or both NaN.
+bool same_cell(double a, double b) {
+  return (std::isnan(a) && std::isnan(b)) || a == b;
+}
+
+void expect_row(const ProbabilityGrid& grid, const std::vector<double>& expected) {
+  ASSERT_EQ(grid.geometry.height, 1);
+  ASSERT_EQ(grid.cells.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_TRUE(same_cell(grid.cells[i], expected[i]))
+        << "cell " << i << ": " << grid.cells[i] << ", expected " << expected[i];
+  }
+}
+
+// Around both default thresholds: (255 - v) / 255 for these is 1, .808, .804, .651, .647, .498,
+// .353, .349, .19608, .19216, 0 against occupied_thresh .65 and free_thresh .196.
+const std::vector<std::uint8_t> kThresholdPixels = {0,   49,  50,  89,  90, 128,
+                                                    165, 166, 205, 206, 255};
+
+RosMap read_one_row(const TempDir& dir, const std::vector<std::uint8_t>& pixels,
+                    const std::string& mode, bool negate, const std::string& occupied = "0.65",
+                    const std::string& free = "0.196") {
+  dir.write("row.pgm", p5(static_cast<int>(pixels.size()), 1, pixels));
+  return read_ros_map(dir.write("row.yaml", mode_yaml("row.pgm", mode, negate, occupied, free)));
+}
+
+TEST(RosMapMode, WithoutModeCellsKeepTheImagesProbability) {
+  const TempDir dir;
+  std::vector<double> expected;
+  for (const std::uint8_t v : kThresholdPixels) expected.push_back(1.0 - v / 255.0);
+  expect_row(read_one_row(dir, kThresholdPixels, "", false).grid, expected);
+}
+
+TEST(RosMapMode, TrinaryGivesOccupiedFreeOrUnknown) {
+  const TempDir dir;
+  const double u = kUnknown;
+  expect_row(read_one_row(dir, kThresholdPixels, "trinary", false).grid,
+             {1, 1, 1, 1, u, u, u, u, u, 0, 0});
+  // negate: p = v / 255
+  expect_row(read_one_row(dir, kThresholdPixels, "trinary", true).grid,
+             {0, 0, u, u, u, u, u, 1, 1, 1, 1});
+}
+
+TEST(RosMapMode, ScaleKeepsTheProbabilityBetweenTheThresholds) {
+  const TempDir dir;
+  expect_row(read_one_row(dir, kThresholdPixels, "scale", false).grid,
+             {1, 1, 1, 1, 165 / 255.0, 127 / 255.0, 90 / 255.0, 89 / 255.0, 50 / 255.0, 0, 0});
+  expect_row(read_one_row(dir, kThresholdPixels, "scale", true).grid,
+             {0, 0, 50 / 255.0, 89 / 255.0, 90 / 255.0, 128 / 255.0, 165 / 255.0, 1, 1, 1, 1});
+}
+
+TEST(RosMapMode, ThresholdsAreStrictAsInMapServer) {
+  const TempDir dir;
+  // (255 - v) / 255: 153/255 = 0.6 and 51/255 = 0.2 exactly, on the thresholds, then just past.
+  const std::vector<std::uint8_t> pixels = {102, 204, 101, 205};
+  expect_row(read_one_row(dir, pixels, "trinary", false, "0.6", "0.2").grid,
+             {kUnknown, kUnknown, 1, 0});
+  expect_row(read_one_row(dir, pixels, "scale", false, "0.6", "0.2").grid, {0.6, 0.2, 1, 0});
+}
+
+TEST(RosMapMode, RawIsThePercentOccupiedAndIgnoresNegate) {
+  const TempDir dir;
+  const std::vector<std::uint8_t> pixels = {0, 1, 50, 99, 100, 101, 200, 255};
+  const std::vector<double> expected = {0,   1 / 100.0, 50 / 100.0, 99 / 100.0,
+                                        1.0, kUnknown,  kUnknown,   kUnknown};
+  expect_row(read_one_row(dir, pixels, "raw", false).grid, expected);
+  expect_row(read_one_row(dir, pixels, "raw", true).grid, expected);
+}
+
+// ---- PNG maps ----
+
+// Writes a PNG with libpng's full API, so that every colour type, bit depth, palette, tRNS
+// chunk and interlacing can be made. Rows are packed as PNG stores them.
+struct PngSpec {
+  int width = 0;
+  int height = 0;
+  int color_type = PNG_COLOR_TYPE_GRAY;
+  int bit_depth = 8;
+  bool interlaced = false;
+  std::vector<png_color> palette;
+  std::vector<png_byte> palette_alpha;      // tRNS of a palette image
+  std::optional<png_color_16> transparent;  // tRNS of a grey or RGB image
+  std::vector<std::vector<png_byte>> rows;
+};
+
+void append_to_string(png_structp png, png_bytep data, png_size_t length) {
+  static_cast<std::string*>(png_get_io_ptr(png))
+      ->append(reinterpret_cast<const char*>(data), length);
+}
+
+// Only plain data between the setjmp and libpng's longjmp.
+bool encode_png(png_structp png, png_infop info, const PngSpec& spec, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_set_IHDR(png, info, static_cast<png_uint_32>(spec.width),
+               static_cast<png_uint_32>(spec.height), spec.bit_depth, spec.color_type,
+               spec.interlaced ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (!spec.palette.empty()) {
+    png_set_PLTE(png, info, spec.palette.data(), static_cast<int>(spec.palette.size()));
+  }
+  if (!spec.palette_alpha.empty()) {
+    png_set_tRNS(png, info, spec.palette_alpha.data(), static_cast<int>(spec.palette_alpha.size()),
+                 nullptr);
+  }
+  if (spec.transparent) png_set_tRNS(png, info, nullptr, 0, &*spec.transparent);
+  png_write_info(png, info);
+  png_write_image(png, rows);  // all Adam7 passes if interlaced
+  png_write_end(png, nullptr);
+  return true;
+}
+
+std::string png_file_bytes(const PngSpec& spec) {
+  std::string out;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  png_set_write_fn(png, &out, append_to_string, nullptr);
+  std::vector<png_bytep> rows;
+  for (const auto& row : spec.rows) rows.push_back(const_cast<png_bytep>(row.data()));
+  const bool ok = encode_png(png, info, spec, rows.data());
+  png_destroy_write_struct(&png, &info);
+  if (!ok) throw std::runtime_error("the test could not encode its PNG");
+  return out;
+}
+
+// How a test map is stored in a PNG.
+struct PngKind {
+  const char* name;
+  int color_type;
+  int bit_depth;
+  bool transparency = false;  // an alpha channel with transparent pixels, or a tRNS chunk
+  bool interlaced = false;
+};
+
+int colour_channels(const PngKind& kind) {
+  return (kind.color_type & PNG_COLOR_MASK_COLOR) != 0 && kind.color_type != PNG_COLOR_TYPE_PALETTE
+             ? 3
+             : 1;
+}
+
+bool has_alpha_channel(const PngKind& kind) {
+  return (kind.color_type & PNG_COLOR_MASK_ALPHA) != 0;
+}
+
+// The 8-bit grey levels a sample of bit_depth < 8 (or a palette of 2^bit_depth entries) holds.
+int level_step(int bit_depth) {
+  return bit_depth >= 8 ? 1 : 255 / ((1 << bit_depth) - 1);
+}
+
+// The grey of each pixel as a PGM of the same map holds it, row 0 at the top: deterministic,
+// spread over 0..255 and not symmetric, so a flipped, shifted or mis-averaged image shows.
+constexpr int kTestWidth = 13;  // odd, so packed sub-byte rows end in a partial byte
+constexpr int kTestHeight = 7;
+
+std::vector<std::uint8_t> test_levels(int bit_depth) {
+  std::vector<std::uint8_t> levels;
+  std::uint32_t state = 12345;
+  const int step = level_step(bit_depth);
+  for (int i = 0; i < kTestWidth * kTestHeight; ++i) {
+    state = state * 1103515245u + 12345u;
+    const int v = static_cast<int>((state >> 16) % 256);
+    levels.push_back(static_cast<std::uint8_t>(
+        (v + step / 2) / step * step > 255 ? 255 : (v + step / 2) / step * step));
+  }
+  return levels;
+}
+
+// Alpha channel of the pixel with index i: some fully and some slightly transparent.
+std::uint8_t test_alpha(int i) {
+  return i % 5 == 0 ? 0 : i % 5 == 1 ? 254 : 255;
+}
+
+struct EncodedPng {
+  std::string bytes;
+  std::vector<bool> opaque;  // per pixel, row 0 at the top
+};
+
+// Packs sample values of bit_depth bits into a PNG row.
+std::vector<png_byte> pack_row(const std::vector<int>& samples, int bit_depth) {
+  std::vector<png_byte> row;
+  if (bit_depth == 16) {
+    for (const int sample : samples) {
+      row.push_back(static_cast<png_byte>(sample >> 8));
+      row.push_back(static_cast<png_byte>(sample & 0xff));
+    }
+  } else if (bit_depth == 8) {
+    for (const int sample : samples) row.push_back(static_cast<png_byte>(sample));
+  } else {
+    row.assign((samples.size() * static_cast<std::size_t>(bit_depth) + 7) / 8, 0);
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const std::size_t bit = i * static_cast<std::size_t>(bit_depth);
+      const int shift = 8 - bit_depth - static_cast<int>(bit % 8);
+      row[bit / 8] = static_cast<png_byte>(row[bit / 8] | (samples[i] << shift));
+    }
+  }
+  return row;
+}
+
+EncodedPng encode_levels(const PngKind& kind, const std::vector<std::uint8_t>& levels) {
+  PngSpec spec;
+  spec.width = kTestWidth;
+  spec.height = kTestHeight;
+  spec.color_type = kind.color_type;
+  spec.bit_depth = kind.bit_depth;
+  spec.interlaced = kind.interlaced;
+  const bool sixteen = kind.bit_depth == 16;
+  const int max = sixteen ? 65535 : 255;
+  const int step = level_step(kind.bit_depth);
+
+  // A palette's entry e holds grey 255 - e * step as a colour whose channels average to it, so
+  // that reading indices instead of colours shows.
+  const int entries = 1 << std::min(kind.bit_depth, 8);
+  if (kind.color_type == PNG_COLOR_TYPE_PALETTE) {
+    for (int e = 0; e < entries; ++e) {
+      const int grey = 255 - e * step;
+      const int d = std::min({e % 4, grey, 255 - grey});
+      spec.palette.push_back({static_cast<png_byte>(grey + d), static_cast<png_byte>(grey - d),
+                              static_cast<png_byte>(grey)});
+      if (kind.transparency) spec.palette_alpha.push_back(test_alpha(e));
+    }
+  }
+
+  EncodedPng encoded;
+  std::vector<std::vector<int>> colours;  // the samples of each pixel's colour channels
+  for (int i = 0; i < kTestWidth * kTestHeight; ++i) {
+    const int grey = levels[static_cast<std::size_t>(i)];
+    const int base = sixteen ? grey * 257 : grey / step;
+    if (kind.color_type == PNG_COLOR_TYPE_PALETTE) {
+      colours.push_back({(255 - grey) / step});
+    } else if (colour_channels(kind) == 3) {
+      // Unequal channels with the grey as their mean.
+      const int d = std::min({(i * 7) % 5 * (sixteen ? 1000 : 1), base, max - base});
+      colours.push_back({base + d, base - d, base});
+    } else {
+      colours.push_back({base});
+    }
+  }
+  if (kind.transparency && !has_alpha_channel(kind) && kind.color_type != PNG_COLOR_TYPE_PALETTE) {
+    // tRNS: the colour of pixel 0 is transparent wherever it appears.
+    const std::vector<int>& c = colours[0];
+    png_color_16 colour{};
+    if (c.size() == 1) {
+      colour.gray = static_cast<png_uint_16>(c[0]);
+    } else {
+      colour.red = static_cast<png_uint_16>(c[0]);
+      colour.green = static_cast<png_uint_16>(c[1]);
+      colour.blue = static_cast<png_uint_16>(c[2]);
+    }
+    spec.transparent = colour;
+  }
+
+  for (int y = 0; y < kTestHeight; ++y) {
+    std::vector<int> samples;
+    for (int x = 0; x < kTestWidth; ++x) {
+      const int i = y * kTestWidth + x;
+      const std::vector<int>& c = colours[static_cast<std::size_t>(i)];
+      samples.insert(samples.end(), c.begin(), c.end());
+      bool opaque = true;
+      if (has_alpha_channel(kind)) {
+        const int alpha = kind.transparency ? test_alpha(i) : 255;
+        samples.push_back(sixteen ? (alpha == 255 ? 65535 : alpha * 257) : alpha);
+        opaque = alpha == 255;
+      } else if (kind.transparency && kind.color_type == PNG_COLOR_TYPE_PALETTE) {
+        opaque = test_alpha(c[0]) == 255;
+      } else if (kind.transparency) {
+        opaque = c != colours[0];
+      }
+      encoded.opaque.push_back(opaque);
+    }
+    spec.rows.push_back(pack_row(samples, kind.bit_depth));
+  }
+  encoded.bytes = png_file_bytes(spec);
+  return encoded;
+}
+
+class PngMap : public ::testing::TestWithParam<PngKind> {};
+
+// The PNG against the same map written as a PGM: the PGM path is the oracle. Transparent
+// pixels are unknown except in raw mode, which ignores alpha.
+TEST_P(PngMap, ReadsAsTheSameMapWrittenAsPgm) {
+  const PngKind& kind = GetParam();
+  const TempDir dir;
+  const std::vector<std::uint8_t> levels = test_levels(kind.bit_depth);
+  dir.write("map.pgm", p5(kTestWidth, kTestHeight, levels));
+  const EncodedPng png = encode_levels(kind, levels);
+  dir.write("map.png", png.bytes);
+  if (kind.transparency) {
+    ASSERT_NE(std::count(png.opaque.begin(), png.opaque.end(), false), 0) << "nothing transparent";
+    ASSERT_NE(std::count(png.opaque.begin(), png.opaque.end(), true), 0) << "nothing opaque";
+  }
+
+  for (const std::string mode : {"", "trinary", "scale", "raw"}) {
+    for (const bool negate : {false, true}) {
+      SCOPED_TRACE("mode \"" + mode + "\", negate " + (negate ? "1" : "0"));
+      const RosMap oracle = read_ros_map(dir.write("pgm.yaml", mode_yaml("map.pgm", mode, negate)));
+      const RosMap map = read_ros_map(dir.write("png.yaml", mode_yaml("map.png", mode, negate)));
+      expect_same_geometry(map.grid.geometry, oracle.grid.geometry);
+      ASSERT_EQ(map.grid.cells.size(), oracle.grid.cells.size());
+      for (int iy = 0; iy < kTestHeight; ++iy) {
+        for (int ix = 0; ix < kTestWidth; ++ix) {
+          const std::size_t pixel =
+              static_cast<std::size_t>((kTestHeight - 1 - iy) * kTestWidth + ix);
+          const double expected =
+              png.opaque[pixel] || mode == "raw" ? oracle.grid.at(ix, iy) : kUnknown;
+          EXPECT_TRUE(same_cell(map.grid.at(ix, iy), expected))
+              << "cell (" << ix << ", " << iy << "): " << map.grid.at(ix, iy) << ", expected "
+              << expected;
+        }
+      }
+      // The oracle itself must tell the cases apart for the comparison to mean something.
+      if (kind.bit_depth >= 8 && !negate) {
+        const auto count = [&](auto predicate) {
+          return std::count_if(oracle.grid.cells.begin(), oracle.grid.cells.end(), predicate);
+        };
+        const auto is_nan = [](double p) { return std::isnan(p); };
+        const auto is_fraction = [](double p) { return p > 0.0 && p < 1.0; };
+        if (mode == "trinary") {
+          EXPECT_GT(count(is_nan), 0);
+          EXPECT_GT(count([](double p) { return p == 0.0; }), 0);
+          EXPECT_GT(count([](double p) { return p == 1.0; }), 0);
+        } else if (mode == "scale") {
+          EXPECT_GT(count(is_fraction), 0);
+          EXPECT_GT(count([](double p) { return p == 1.0; }), 0);
+        } else if (mode == "raw") {
+          EXPECT_GT(count(is_nan), 0);
+          EXPECT_GT(count(is_fraction), 0);
+        } else {
+          EXPECT_EQ(count(is_nan), 0);
+        }
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    RosMapPng, PngMap,
+    ::testing::Values(
+        PngKind{"grey1", PNG_COLOR_TYPE_GRAY, 1}, PngKind{"grey2", PNG_COLOR_TYPE_GRAY, 2},
+        PngKind{"grey4", PNG_COLOR_TYPE_GRAY, 4}, PngKind{"grey8", PNG_COLOR_TYPE_GRAY, 8},
+        PngKind{"grey16", PNG_COLOR_TYPE_GRAY, 16},
+        PngKind{"grey8_trns", PNG_COLOR_TYPE_GRAY, 8, true},
+        PngKind{"grey16_trns", PNG_COLOR_TYPE_GRAY, 16, true},
+        PngKind{"grey_alpha8", PNG_COLOR_TYPE_GRAY_ALPHA, 8, true},
+        PngKind{"grey_alpha16", PNG_COLOR_TYPE_GRAY_ALPHA, 16, true},
+        PngKind{"grey_alpha8_opaque", PNG_COLOR_TYPE_GRAY_ALPHA, 8},
+        PngKind{"rgb8", PNG_COLOR_TYPE_RGB, 8}, PngKind{"rgb16", PNG_COLOR_TYPE_RGB, 16},
+        PngKind{"rgb8_trns", PNG_COLOR_TYPE_RGB, 8, true},
+        PngKind{"rgba8", PNG_COLOR_TYPE_RGB_ALPHA, 8, true},
+        PngKind{"rgba16", PNG_COLOR_TYPE_RGB_ALPHA, 16, true},
+        PngKind{"rgba8_opaque", PNG_COLOR_TYPE_RGB_ALPHA, 8},
+        PngKind{"palette1", PNG_COLOR_TYPE_PALETTE, 1},
+        PngKind{"palette4", PNG_COLOR_TYPE_PALETTE, 4},
+        PngKind{"palette8", PNG_COLOR_TYPE_PALETTE, 8},
+        PngKind{"palette8_trns", PNG_COLOR_TYPE_PALETTE, 8, true},
+        PngKind{"grey8_interlaced", PNG_COLOR_TYPE_GRAY, 8, false, true},
+        PngKind{"rgba16_interlaced", PNG_COLOR_TYPE_RGB_ALPHA, 16, true, true}),
+    [](const ::testing::TestParamInfo<PngKind>& kind) { return std::string(kind.param.name); });
+
+TEST(RosMapPng, ProjectsOwnWritePngReadsAsItsGrey) {
+  const TempDir dir;
+  const std::vector<std::uint8_t> levels = test_levels(8);
+  dir.write("map.pgm", p5(kTestWidth, kTestHeight, levels));
+  RgbImage image(kTestWidth, kTestHeight);
+  for (int i = 0; i < kTestWidth * kTestHeight; ++i) {
+    const std::uint8_t v = levels[static_cast<std::size_t>(i)];
+    image.set(i % kTestWidth, i / kTestWidth, {v, v, v});
+  }
+  write_png(dir / "map.png", image);
+  for (const std::string mode : {"", "trinary", "scale", "raw"}) {
+    SCOPED_TRACE("mode \"" + mode + "\"");
+    const RosMap oracle = read_ros_map(dir.write("pgm.yaml", mode_yaml("map.pgm", mode, false)));
+    const RosMap map = read_ros_map(dir.write("png.yaml", mode_yaml("map.png", mode, false)));
+    ASSERT_EQ(map.grid.cells.size(), oracle.grid.cells.size());
+    for (std::size_t i = 0; i < map.grid.cells.size(); ++i) {
+      EXPECT_TRUE(same_cell(map.grid.cells[i], oracle.grid.cells[i])) << "cell " << i;
+    }
+  }
+}
+
+std::string grey8_png() {
+  return encode_levels(PngKind{"grey8", PNG_COLOR_TYPE_GRAY, 8}, test_levels(8)).bytes;
+}
+
+TEST(RosMapPng, PngIsKnownBySignatureNotByName) {
+  const TempDir dir;
+  const std::vector<std::uint8_t> levels = test_levels(8);
+  dir.write("pgm.yaml", mode_yaml("pgm.png", "", false));
+  dir.write("png.yaml", mode_yaml("png.pgm", "", false));
+  dir.write("pgm.png", p5(kTestWidth, kTestHeight, levels));
+  dir.write("png.pgm", grey8_png());
+  const RosMap from_pgm = read_ros_map(dir / "pgm.yaml");
+  const RosMap from_png = read_ros_map(dir / "png.yaml");
+  EXPECT_TRUE(from_png.grid.cells == from_pgm.grid.cells);
+  EXPECT_DOUBLE_EQ(from_pgm.grid.at(0, kTestHeight - 1), 1.0 - levels[0] / 255.0);
+}
+
+TEST(RosMapPng, NeitherPngNorPgmIsAMagicError) {
+  const TempDir dir;
+  const auto image = dir.write("map.png", "GIF89a...");
+  const auto yaml = dir.write("map.yaml", mode_yaml("map.png", "", false));
+  const std::string message = expect_input_error([&] { read_ros_map(yaml); }, image, 1, "magic");
+  EXPECT_THAT(message, HasSubstr("PNG signature"));
+}
+
+// A PNG's chunks: offset of each chunk's length field, by type.
+std::size_t chunk_offset(const std::string& png, const std::string& type) {
+  std::size_t offset = 8;
+  while (offset + 8 <= png.size()) {
+    const auto byte = [&](std::size_t i) {
+      return static_cast<std::uint32_t>(static_cast<unsigned char>(png[i]));
+    };
+    const std::uint32_t length =
+        byte(offset) << 24 | byte(offset + 1) << 16 | byte(offset + 2) << 8 | byte(offset + 3);
+    if (png.compare(offset + 4, 4, type) == 0) return offset;
+    offset += 12 + length;
+  }
+  throw std::runtime_error("no " + type + " chunk");
+}
+
+std::uint32_t crc32(std::string_view bytes) {
+  std::uint32_t crc = 0xffffffffu;
+  for (const char c : bytes) {
+    crc ^= static_cast<unsigned char>(c);
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+std::string be32(std::uint32_t v) {
+  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+          static_cast<char>(v)};
+}
+
+std::string chunk(const std::string& type, const std::string& data) {
+  return be32(static_cast<std::uint32_t>(data.size())) + type + data + be32(crc32(type + data));
+}
+
+const std::string kPngSignature("\x89PNG\r\n\x1a\n", 8);
+
+std::string ihdr(std::uint32_t width, std::uint32_t height) {
+  return chunk("IHDR", be32(width) + be32(height) + std::string("\x08\x00\x00\x00\x00", 5));
+}
+
+TEST(RosMapPng, TruncatedPngNamesFileAndWhereItEnds) {
+  const TempDir dir;
+  const std::string png = grey8_png();
+  const auto yaml = dir.write("map.yaml", mode_yaml("map.png", "trinary", false));
+  const std::size_t idat = chunk_offset(png, "IDAT");
+  const std::size_t iend = chunk_offset(png, "IEND");
+  const std::vector<std::pair<std::size_t, std::string>> cuts = {
+      {20, "header"},         // inside IHDR
+      {idat, "header"},       // before the image data
+      {idat + 20, "pixels"},  // inside it
+      {iend, "pixels"},       // all of it, but not the end chunk
+      {png.size() - 1, "pixels"}};
+  for (const auto& [size, field] : cuts) {
+    SCOPED_TRACE("cut to " + std::to_string(size) + " bytes");
+    const auto image = dir.write("map.png", png.substr(0, size));
+    const std::string message = expect_input_error([&] { read_ros_map(yaml); }, image, 0, field);
+    EXPECT_THAT(message, HasSubstr("truncated PNG"));
+    EXPECT_THAT(message, HasSubstr("ends after " + std::to_string(size) + " bytes"));
+  }
+}
+
+TEST(RosMapPng, CorruptPngNamesFileAndLibpngsReason) {
+  const TempDir dir;
+  const std::string png = grey8_png();
+  const auto yaml = dir.write("map.yaml", mode_yaml("map.png", "", false));
+
+  std::string bad_crc = png;
+  bad_crc[chunk_offset(png, "IDAT") + 10] ^= 0x01;
+  auto image = dir.write("map.png", bad_crc);
+  std::string message = expect_input_error([&] { read_ros_map(yaml); }, image, 0, "pixels");
+  EXPECT_THAT(message, HasSubstr("corrupt PNG"));
+  EXPECT_THAT(message, HasSubstr("CRC"));
+
+  std::string bad_header = png;
+  bad_header[8 + 8 + 2] ^= 0x01;  // a byte of the width
+  image = dir.write("map.png", bad_header);
+  message = expect_input_error([&] { read_ros_map(yaml); }, image, 0, "header");
+  EXPECT_THAT(message, HasSubstr("IHDR"));
+
+  // Bad compressed data behind a correct CRC: zlib's complaint.
+  const std::size_t idat = chunk_offset(png, "IDAT");
+  const auto length = static_cast<std::size_t>(static_cast<unsigned char>(png[idat + 2]) << 8 |
+                                               static_cast<unsigned char>(png[idat + 3]));
+  std::string data = png.substr(idat + 8, length);
+  data[0] = '\x00';  // the zlib header's method byte
+  image = dir.write("map.png",
+                    png.substr(0, idat) + chunk("IDAT", data) + png.substr(idat + 12 + length));
+  message = expect_input_error([&] { read_ros_map(yaml); }, image, 0, "pixels");
+  EXPECT_THAT(message, HasSubstr("corrupt PNG"));
+}
+
+TEST(RosMapPng, HugePngIsRejectedBeforeDecoding) {
+  const TempDir dir;
+  const auto image = dir.write(
+      "map.png", kPngSignature + ihdr(65536, 65536) + chunk("IDAT", "") + chunk("IEND", ""));
+  const auto yaml = dir.write("map.yaml", mode_yaml("map.png", "", false));
+  const std::string message = expect_input_error([&] { read_ros_map(yaml); }, image, 0, "height");
+  EXPECT_THAT(message, HasSubstr("exceeds 2^31"));
+}
+
+TEST(RosMapPng, PngWiderThanLibpngsDefaultLimitIsNotRejectedForItsSize) {
+  const TempDir dir;
+  // 2^20 + 1 columns, above libpng's default 10^6; the image data is missing, so decoding
+  // fails, but on the pixels, not the size.
+  const auto image = dir.write(
+      "map.png", kPngSignature + ihdr((1u << 20) + 1, 1) + chunk("IDAT", "") + chunk("IEND", ""));
+  const auto yaml = dir.write("map.yaml", mode_yaml("map.png", "", false));
+  expect_input_error([&] { read_ros_map(yaml); }, image, 0, "pixels");
+}
+
+TEST(RosMapPng, ZeroWidthPngIsAHeaderError) {
+  const TempDir dir;
+  const auto image =
+      dir.write("map.png", kPngSignature + ihdr(0, 4) + chunk("IDAT", "") + chunk("IEND", ""));
+  const auto yaml = dir.write("map.yaml", mode_yaml("map.png", "", false));
+  const std::string message = expect_input_error([&] { read_ros_map(yaml); }, image, 0, "header");
+  EXPECT_THAT(message, HasSubstr("corrupt PNG"));
 }
 
 }  // namespace

@@ -38,6 +38,7 @@
 #include "intgrid/slam/grid_slam.hpp"
 #include "intgrid/slam/log_run.hpp"
 #include "intgrid/slam/probabilities.hpp"
+#include "intgrid/slam/scan_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 
 using namespace intgrid::core;
@@ -155,13 +156,13 @@ double wrap(double a) {
 
 SlamConfig small_config() {
   SlamConfig c;
-  c.max_range = 10.0;
-  c.map_margin = 2.0;
+  c.beam.max_range = 10.0;
+  c.map.margin = 2.0;
   return c;
 }
 
 // Every scan of the log as the per-scan path's input, through the public quantization.
-std::vector<SlamScan> quantize(const Log& log, const SlamConfig& config) {
+std::vector<QuantizedScan> quantize(const Log& log, const SlamConfig& config) {
   SlamRun counts;
   return quantize_scans(log, config, counts);
 }
@@ -260,7 +261,7 @@ TEST(SlamSetup, MapPutsTheSlamOriginCellOnTheOrigin) {
     EXPECT_EQ(g.cell_x(0.0), s.origin_cell_x);
     EXPECT_EQ(g.cell_y(0.0), s.origin_cell_y);
     // Every point within the odometry's reach plus a full-range reading, plus the margin, is in.
-    const double needed = reach + c.max_range + c.map_margin;
+    const double needed = reach + c.beam.max_range + c.map.margin;
     for (const double sx : {-1.0, 1.0})
       for (const double sy : {-1.0, 1.0})
         EXPECT_TRUE(g.contains(g.cell_x(sx * needed), g.cell_y(sy * needed))) << cell;
@@ -271,8 +272,8 @@ TEST(SlamSetup, NarrowIsmTableIsTheScanInsertersBeams) {
   const World world;
   for (const int divisor : {1, 3}) {
     SlamConfig c = small_config();
-    c.max_range = 6.0;
-    c.empty_divisor = divisor;
+    c.beam.max_range = 6.0;
+    c.map.empty_divisor = divisor;
     const SlamSetup s = make_slam_setup(c, make_scan(world, {}, {}, 0.0, 90), 0.0);
     const NarrowIsmTable& t = s.ism;
     EXPECT_EQ(t.z_step_mm, 12);  // cell / 8
@@ -281,7 +282,7 @@ TEST(SlamSetup, NarrowIsmTableIsTheScanInsertersBeams) {
     EXPECT_EQ(t.begin[0], t.begin[1]);  // a reading of 0 has no cells
     EXPECT_EQ(t.begin.back(), t.values.size());
     // The oracle: the integer scan inserter with the same model, codec and veto.
-    IndexScanInserter<std::int8_t> inserter(GaussianBeamModel{c.sigma, 0.0}, c.cell, s.codec,
+    IndexScanInserter<std::int8_t> inserter(GaussianBeamModel{c.beam.sigma, 0.0}, c.cell, s.codec,
                                             VetoBound::strongest_claim, t.z_step_mm / 1000.0);
     std::size_t checked = 0;
     for (std::size_t b = 1; b < bins; b += 7) {
@@ -316,37 +317,38 @@ TEST(SlamSetup, ConfigCheckNamesEachBadField) {
       {"cell", [](SlamConfig& c) { c.cell = 0.0; }},
       {"headings", [](SlamConfig& c) { c.headings = 1000; }},
       {"headings", [](SlamConfig& c) { c.headings = 4; }},
-      {"window_cells", [](SlamConfig& c) { c.window_cells = 10; }},
-      {"window_headings", [](SlamConfig& c) { c.window_headings = 12; }},
-      {"window_headings",
+      {"window.cells", [](SlamConfig& c) { c.window.cells = 10; }},
+      {"window.headings", [](SlamConfig& c) { c.window.headings = 12; }},
+      {"window.headings",
        [](SlamConfig& c) {
          c.headings = 8;
-         c.window_headings = 9;
+         c.window.headings = 9;
        }},
-      {"lambda", [](SlamConfig& c) { c.lambda = 0; }},
-      {"xi", [](SlamConfig& c) { c.xi = 0; }},
-      {"sigma", [](SlamConfig& c) { c.sigma = std::numeric_limits<double>::quiet_NaN(); }},
-      {"sigma", [](SlamConfig& c) { c.sigma = 0.0005; }},
-      {"likelihood_floor", [](SlamConfig& c) { c.likelihood_floor = 0.0; }},
-      {"beams", [](SlamConfig& c) { c.beams = 0; }},
-      {"tempering", [](SlamConfig& c) { c.tempering = 0; }},
-      {"max_range", [](SlamConfig& c) { c.max_range = -1.0; }},
-      {"pose_cutoff", [](SlamConfig& c) { c.pose_cutoff = 0.0; }},
-      {"pose_prune", [](SlamConfig& c) { c.pose_prune = -1e-9; }},
-      {"pose_prune",
-       [](SlamConfig& c) { c.pose_prune = std::numeric_limits<double>::quiet_NaN(); }},
-      {"pose_prune", [](SlamConfig& c) { c.pose_prune = c.pose_cutoff; }},
-      {"motion", [](SlamConfig& c) { c.motion_xy_per_m = -0.1; }},
-      {"motion", [](SlamConfig& c) { c.motion_theta0 = std::numeric_limits<double>::infinity(); }},
-      {"seps_bits", [](SlamConfig& c) { c.seps_bits = 9; }},
+      {"schedule.lambda", [](SlamConfig& c) { c.schedule.lambda = 0; }},
+      {"schedule.xi", [](SlamConfig& c) { c.schedule.xi = 0; }},
+      {"beam.sigma",
+       [](SlamConfig& c) { c.beam.sigma = std::numeric_limits<double>::quiet_NaN(); }},
+      {"beam.sigma", [](SlamConfig& c) { c.beam.sigma = 0.0005; }},
+      {"beam.likelihood_floor", [](SlamConfig& c) { c.beam.likelihood_floor = 0.0; }},
+      {"beam.beams", [](SlamConfig& c) { c.beam.beams = 0; }},
+      {"beam.tempering", [](SlamConfig& c) { c.beam.tempering = 0; }},
+      {"beam.max_range", [](SlamConfig& c) { c.beam.max_range = -1.0; }},
+      {"window.pose_cutoff", [](SlamConfig& c) { c.window.pose_cutoff = 0.0; }},
+      {"window.pose_prune", [](SlamConfig& c) { c.window.pose_prune = -1e-9; }},
+      {"window.pose_prune",
+       [](SlamConfig& c) { c.window.pose_prune = std::numeric_limits<double>::quiet_NaN(); }},
+      {"window.pose_prune", [](SlamConfig& c) { c.window.pose_prune = c.window.pose_cutoff; }},
+      {"motion", [](SlamConfig& c) { c.motion.xy_per_m = -0.1; }},
+      {"motion", [](SlamConfig& c) { c.motion.theta0 = std::numeric_limits<double>::infinity(); }},
+      {"map.seps_bits", [](SlamConfig& c) { c.map.seps_bits = 9; }},
       // 128 > the largest index 127. (127 itself is accepted, though the message says "below
       // the largest index".)
-      {"seps_levels", [](SlamConfig& c) { c.seps_levels = 128; }},
-      {"empty_divisor", [](SlamConfig& c) { c.empty_divisor = 0; }},
-      {"ugamma_bits", [](SlamConfig& c) { c.ugamma_bits = 32; }},
-      {"ugamma_steps_per_halving", [](SlamConfig& c) { c.ugamma_steps_per_halving = 0; }},
-      {"map_margin",
-       [](SlamConfig& c) { c.map_margin = std::numeric_limits<double>::quiet_NaN(); }},
+      {"map.seps_levels", [](SlamConfig& c) { c.map.seps_levels = 128; }},
+      {"map.empty_divisor", [](SlamConfig& c) { c.map.empty_divisor = 0; }},
+      {"ugamma.bits", [](SlamConfig& c) { c.ugamma.bits = 32; }},
+      {"ugamma.steps_per_halving", [](SlamConfig& c) { c.ugamma.steps_per_halving = 0; }},
+      {"map.margin",
+       [](SlamConfig& c) { c.map.margin = std::numeric_limits<double>::quiet_NaN(); }},
   };
   for (const Case& k : cases) {
     SlamConfig c;
@@ -376,7 +378,7 @@ int cell_of(double v, double cell) {
 }
 
 template <class Pr>
-Grid<std::int8_t> first_scan_map(const SlamSetup& setup, const SlamScan& scan) {
+Grid<std::int8_t> first_scan_map(const SlamSetup& setup, const QuantizedScan& scan) {
   GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
   slam.process(scan);
   EXPECT_EQ(slam.mappings(), 1u);
@@ -393,13 +395,13 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
   // The robot's world pose; the SLAM frame is this pose, so the room appears rotated in it.
   const Pose2 robot{0.3, -0.4, 0.5};
   SlamConfig config = small_config();
-  config.lambda = 1000;
-  config.max_range = 3.2;  // some walls are farther: those readings are dropped
+  config.schedule.lambda = 1000;
+  config.beam.max_range = 3.2;  // some walls are farther: those readings are dropped
   Log log;
   log.scans.push_back(make_scan(world, robot, robot, 0.0, 90));
   const Scan& scan = log.scans[0];
   const SlamSetup setup = make_slam_setup(config, scan, 0.0);
-  const std::vector<SlamScan> q = quantize(log, config);
+  const std::vector<QuantizedScan> q = quantize(log, config);
   const Grid<std::int8_t> map = first_scan_map<DoubleProbabilities>(setup, q[0]);
   // The map does not depend on the arithmetic of Pi while Pi is one pose.
   EXPECT_EQ(map.cells, first_scan_map<IndexProbabilities>(setup, q[0]).cells);
@@ -414,7 +416,7 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
     const double z = scan.ranges[i];
     if (!usable(i)) {
-      ASSERT_GE(z, config.max_range - 0.001) << i;
+      ASSERT_GE(z, config.beam.max_range - 0.001) << i;
       ++dropped;
       continue;
     }
@@ -439,7 +441,7 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
       ASSERT_TRUE(world.inside_room(w.x, w.y, 2 * c)) << cx << "," << cy;
       const double r = std::hypot(cx * c - sensor.x, cy * c - sensor.y);
       farthest = std::max(farthest, r);
-      ASSERT_LE(r, config.max_range + 2 * c) << cx << "," << cy;
+      ASSERT_LE(r, config.beam.max_range + 2 * c) << cx << "," << cy;
       if (n > 0) {
         ++positive;
         int nearest = 1 << 30;
@@ -484,7 +486,7 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
   std::printf(
       "[slam] first scan: %d occupied, %d empty cells; worst occupied-to-hit distance %d "
       "cell(s); farthest touched cell %.3f m (max range %.1f m); %zu line-of-sight samples\n",
-      positive, negative, worst_hit_distance, farthest, config.max_range, sampled);
+      positive, negative, worst_hit_distance, farthest, config.beam.max_range, sampled);
 }
 
 // The mapping event with a spread Pi: P(o_c) = sum_x w_x P_x(o_c) + (1 - W_c) / 2 over the poses
@@ -501,13 +503,13 @@ template <class Pr>
 MixtureError mixture_map_error(int ugamma_steps_per_halving) {
   const World world = room_with_pillar();
   SlamConfig config = small_config();
-  config.ugamma_steps_per_halving = ugamma_steps_per_halving;
-  config.motion_xy0 = 0.05;  // half a cell: Pi spreads over the neighbouring cells
-  config.motion_theta0 = 0.004;
+  config.ugamma.steps_per_halving = ugamma_steps_per_halving;
+  config.motion.xy0 = 0.05;  // half a cell: Pi spreads over the neighbouring cells
+  config.motion.theta0 = 0.004;
   Log log;
   log.scans.push_back(make_scan(world, {}, {}, 0.0, 90));
   log.scans.push_back(make_scan(world, {}, {}, 0.1, 90));
-  std::vector<SlamScan> scans = quantize(log, config);
+  std::vector<QuantizedScan> scans = quantize(log, config);
   std::fill(scans[0].range_mm.begin(), scans[0].range_mm.end(), 0);  // no mapping at scan 0
   const SlamSetup setup = make_slam_setup(config, log.scans[0], 1.0);
   GridSlam<Pr> mixed(setup, make_probabilities<Pr>(setup));
@@ -541,15 +543,15 @@ MixtureError mixture_map_error(int ugamma_steps_per_halving) {
 
   // Each pose's own ISM image: one pose reached by exact odometry, mapped alone.
   SlamConfig exact = config;
-  exact.motion_xy0 = exact.motion_xy_per_m = exact.motion_xy_per_rad = 0.0;
-  exact.motion_theta0 = exact.motion_theta_per_m = exact.motion_theta_per_rad = 0.0;
+  exact.motion.xy0 = exact.motion.xy_per_m = exact.motion.xy_per_rad = 0.0;
+  exact.motion.theta0 = exact.motion.theta_per_m = exact.motion.theta_per_rad = 0.0;
   const SlamSetup exact_setup = make_slam_setup(exact, log.scans[0], 1.0);
   const std::size_t cells = mixed.map().cells.size();
   std::vector<double> occ(cells, 0.0), emp(cells, 0.0), weight(cells, 0.0);
   for (const Weighted& x : poses) {
     GridSlam<DoubleProbabilities> alone(exact_setup,
                                         make_probabilities<DoubleProbabilities>(exact_setup));
-    SlamScan there = scans[1];
+    QuantizedScan there = scans[1];
     there.odom_dx_mm = static_cast<std::int32_t>(x.pose.x_mm);
     there.odom_dy_mm = static_cast<std::int32_t>(x.pose.y_mm);
     there.odom_dtheta = static_cast<std::int32_t>(x.pose.theta);
@@ -624,7 +626,7 @@ TEST(SlamMapping, MixtureOfPosesIsTheWeightedSumOfTheirIsmsInInteger) {
 TEST(SlamMapping, ScanWithoutUsableReadingsTouchesNothing) {
   const World world;
   SlamConfig config = small_config();
-  config.max_range = 1.0;  // every wall is farther
+  config.beam.max_range = 1.0;  // every wall is farther
   Log log;
   log.scans.push_back(make_scan(world, {}, {}, 0.0, 36));
   const SlamSetup setup = make_slam_setup(config, log.scans[0], 0.0);
@@ -641,7 +643,7 @@ TEST(SlamMapping, ProcessRejectsAScanOfAnotherBeamCount) {
   const SlamConfig config = small_config();
   const SlamSetup setup = make_slam_setup(config, make_scan(world, {}, {}, 0.0, 36), 0.0);
   GridSlam<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
-  SlamScan scan;
+  QuantizedScan scan;
   scan.range_mm.assign(35, 1000);
   EXPECT_THROW(slam.process(scan), std::invalid_argument);
 }
@@ -657,8 +659,8 @@ struct MotionTrace {
 
 SlamConfig motion_config() {
   SlamConfig c = small_config();
-  c.motion_xy0 = 0.03;  // a kernel of at least 0.3 cells: its sampled mean is its centre
-  c.window_headings = 31;
+  c.motion.xy0 = 0.03;  // a kernel of at least 0.3 cells: its sampled mean is its centre
+  c.window.headings = 31;
   return c;
 }
 
@@ -683,7 +685,7 @@ MotionTrace run_motion_only() {
     std::fill(s.ranges.begin(), s.ranges.end(), 0.0);
     log.scans.push_back(s);
   }
-  const std::vector<SlamScan> scans = quantize(log, config);
+  const std::vector<QuantizedScan> scans = quantize(log, config);
   const SlamSetup setup = make_slam_setup(config, log.scans[0], 4.0);
   GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
   MotionTrace trace;
@@ -731,10 +733,10 @@ void expect_mean_follows_odometry(const char* name) {
   } else {
     // Normalizing divides by the pairwise sum of the grid, exact in U_gamma; that sum rounds
     // by half a step per level of the pairwise tree, so the mass is 1 within gamma^(-+d/2).
-    const double steps = 0.5 * pairwise_depth(static_cast<std::size_t>(c.window_cells) *
-                                              static_cast<std::size_t>(c.window_cells) *
-                                              static_cast<std::size_t>(c.window_headings));
-    EXPECT_LE(worst_mass, std::exp2(steps / c.ugamma_steps_per_halving) - 1.0);
+    const double steps = 0.5 * pairwise_depth(static_cast<std::size_t>(c.window.cells) *
+                                              static_cast<std::size_t>(c.window.cells) *
+                                              static_cast<std::size_t>(c.window.headings));
+    EXPECT_LE(worst_mass, std::exp2(steps / c.ugamma.steps_per_halving) - 1.0);
   }
   std::printf(
       "[slam] motion only, %s: worst mean error %.4f m (bound %.3f), %.5f rad (bound %.5f); "
@@ -776,11 +778,11 @@ TEST(SlamMotion, IntegerAndDoubleMeansAgree) {
 
 TEST(SlamMotion, WindowReachingTheMapEdgeThrows) {
   SlamConfig config = small_config();
-  config.max_range = 1.0;
-  config.map_margin = 1.0;
+  config.beam.max_range = 1.0;
+  config.map.margin = 1.0;
   const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), 0.0);
   GridSlam<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
-  SlamScan scan;
+  QuantizedScan scan;
   scan.range_mm.assign(36, 0);
   ASSERT_NO_THROW(slam.process(scan));
   scan.odom_dx_mm = 500;
@@ -798,12 +800,12 @@ TEST(SlamMotion, WindowReachingTheMapEdgeThrows) {
 TEST(SlamMotion, RunWithinTheAnnouncedReachFitsTheMapWithoutMargin) {
   for (const double max_range : {1.0, 10.0}) {
     SlamConfig config = small_config();
-    config.max_range = max_range;
-    config.map_margin = 0.0;
+    config.beam.max_range = max_range;
+    config.map.margin = 0.0;
     const double reach = 2.0;
     const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), reach);
     GridSlam<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
-    SlamScan scan;
+    QuantizedScan scan;
     scan.range_mm.assign(36, 0);
     int done = 0;
     try {
@@ -828,16 +830,16 @@ TEST(SlamMotion, IntegerEstimateOfABroadPoseGridOnALargeWindow) {
   };
   for (const Window w : {Window{161, 1}, Window{61, 61}}) {
     SlamConfig config = small_config();
-    config.window_cells = w.cells;
-    config.window_headings = w.headings;
-    config.motion_xy0 = 5.0;  // one update spreads Pi nearly evenly over the window
-    config.motion_theta0 = 2.0;
-    config.max_range = 1.0;
-    config.map_margin = 10.0;
+    config.window.cells = w.cells;
+    config.window.headings = w.headings;
+    config.motion.xy0 = 5.0;  // one update spreads Pi nearly evenly over the window
+    config.motion.theta0 = 2.0;
+    config.beam.max_range = 1.0;
+    config.map.margin = 10.0;
     const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), 0.0);
     GridSlam<DoubleProbabilities> d(setup, make_probabilities<DoubleProbabilities>(setup));
     GridSlam<IndexProbabilities> n(setup, make_probabilities<IndexProbabilities>(setup));
-    SlamScan scan;
+    QuantizedScan scan;
     scan.range_mm.assign(36, 0);
     for (int i = 0; i < 2; ++i) {  // the second scan's motion update
       d.process(scan);
@@ -871,11 +873,11 @@ TEST(SlamMotion, IntegerEstimateOfABroadPoseGridOnALargeWindow) {
 SlamConfig localization_config() {
   SlamConfig c = small_config();
   // Pi spreads over the neighbouring cells and headings on a still update.
-  c.motion_xy0 = 0.05;
-  c.motion_theta0 = 0.02;
+  c.motion.xy0 = 0.05;
+  c.motion.theta0 = 0.02;
   // One scan of a simulated room, whose readings are independent given the map: weighed as such,
   // not with the real log's tempering (SlamConfig::tempering).
-  c.tempering = 1;
+  c.beam.tempering = 1;
   return c;
 }
 
@@ -895,7 +897,7 @@ GridSlam<Pr> map_then_localize(const SlamConfig& config, const Pose2& displaceme
   Log log;
   log.scans.push_back(make_scan(world, robot, robot, 0.0, 360));
   log.scans.push_back(make_scan(world, truth, robot, 0.1, 360));  // odometry: no motion
-  const std::vector<SlamScan> scans = quantize(log, config);
+  const std::vector<QuantizedScan> scans = quantize(log, config);
   EXPECT_EQ(scans[1].odom_dx_mm, 0);
   EXPECT_EQ(scans[1].odom_dy_mm, 0);
   EXPECT_EQ(scans[1].odom_dtheta, 0);
@@ -920,7 +922,7 @@ Localized localize_once(const Pose2& displacement) {
 template <class Pr>
 void expect_localization_moves_toward_the_truth(const char* name) {
   const SlamConfig config = localization_config();
-  const int n = config.window_cells, nt = config.window_headings;
+  const int n = config.window.cells, nt = config.window.headings;
   const double c = config.cell, bin = 2.0 * kPi / config.headings;
   const double unit = 2.0 * kPi / kAngleUnitsPerTurn;  // radians per angle unit
   const long cell_mm = std::lround(c * 1000.0);
@@ -1031,9 +1033,9 @@ TEST(SlamLocalization, JointLikelihoodOfManyBeamsSurvivesUnderflowInInteger) {
 template <class Pr>
 void expect_localization_prunes_only_negligible_poses(const char* name) {
   SlamConfig pruned = localization_config();
-  pruned.pose_prune = 1e-6;
+  pruned.window.pose_prune = 1e-6;
   SlamConfig kept = pruned;
-  kept.pose_prune = 0.0;
+  kept.window.pose_prune = 0.0;
   const Pose2 displacement{0.04, -0.03, 0.0175};
   const GridSlam<Pr> with = map_then_localize<Pr>(pruned, displacement),
                      without = map_then_localize<Pr>(kept, displacement);
@@ -1294,7 +1296,7 @@ TEST(SlamLog, CheckRejectsWhatSlamCannotUse) {
 TEST(SlamLog, QuantizationCountsAndZeroesUnusableReadings) {
   Log log = small_log(3, 10);
   SlamConfig config = small_config();
-  config.max_range = 5.0;
+  config.beam.max_range = 5.0;
   std::vector<double>& r = log.scans[1].ranges;
   r = {0.0,    std::numeric_limits<double>::quiet_NaN(),
        -1.0,   std::numeric_limits<double>::infinity(),
@@ -1303,7 +1305,7 @@ TEST(SlamLog, QuantizationCountsAndZeroesUnusableReadings) {
        1.2344, 4.9994,
        0.0004, 2.0};
   SlamRun counts;
-  const std::vector<SlamScan> q = quantize_scans(log, config, counts);
+  const std::vector<QuantizedScan> q = quantize_scans(log, config, counts);
   ASSERT_EQ(q.size(), 3u);
   EXPECT_EQ(counts.readings, 30u);
   // Scan 1: seven unusable (0, NaN, -1, inf, 5.0, 25, 0.0004 rounding to 0 mm).
@@ -1323,8 +1325,8 @@ TEST(SlamLog, ScheduleAndScansWithoutReadings) {
   Log log = small_log(10, 360);
   for (double& r : log.scans[4].ranges) r = std::numeric_limits<double>::quiet_NaN();
   SlamConfig config = small_config();
-  config.lambda = 2;
-  config.xi = 3;
+  config.schedule.lambda = 2;
+  config.schedule.xi = 3;
   for (const Arithmetic a : {Arithmetic::floating, Arithmetic::integer}) {
     const SlamRun run = run_slam(log, config, a);
     EXPECT_EQ(run.scans, 10u);
@@ -1381,6 +1383,67 @@ TEST(TrajectoryError, ScanPosesAreTheLogsRobotPoses) {
   const TrajectoryError e = absolute_trajectory_error(p, p);
   EXPECT_EQ(e.rmse, 0.0);
   EXPECT_EQ(e.matched, 3u);
+}
+
+// ScanSlam, scan by scan in SI units, against the per-scan path driven by hand: GridSlam over
+// quantize_scans' integer inputs, its estimate composed with the first pose.
+template <class Pr>
+void expect_scan_slam_is_the_per_scan_path(Arithmetic arithmetic) {
+  const Log& log = loop_log().log;
+  const SlamConfig config = loop_config();
+  const Pose2 first = log.scans.front().robot;
+  double reach = 0.0;
+  for (const Scan& s : log.scans)
+    reach = std::max(reach, std::hypot(s.robot.x - first.x, s.robot.y - first.y));
+  const SlamSetup setup = make_slam_setup(config, log.scans.front(), reach);
+  GridSlam<Pr> by_hand(setup, make_probabilities<Pr>(setup));
+  ScanSlam online(config, arithmetic, log.scans.front(), reach);
+  const std::vector<QuantizedScan> scans = quantize(log, config);
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    by_hand.process(scans[i]);
+    online.insert(log.scans[i]);
+    const Pose2 expected = compose(first, pose_of(by_hand.estimate()));
+    const Pose2 got = online.pose();
+    ASSERT_EQ(got.x, expected.x) << "scan " << i;
+    ASSERT_EQ(got.y, expected.y) << "scan " << i;
+    ASSERT_EQ(got.theta, wrap_angle(expected.theta)) << "scan " << i;
+    ASSERT_EQ(online.sigma(), static_cast<double>(by_hand.estimate().sigma_um) * 1e-6);
+  }
+  EXPECT_EQ(online.map().cells, by_hand.map().cells);
+  EXPECT_EQ(online.scans(), log.scans.size());
+  EXPECT_EQ(online.localizations(), by_hand.localizations());
+  EXPECT_EQ(online.mappings(), by_hand.mappings());
+  // The whole-log run is the same scans through ScanSlam.
+  const SlamRun& run = loop_run(arithmetic);
+  EXPECT_EQ(run.trajectory.back().pose.x, online.pose().x);
+  EXPECT_EQ(run.map.cells, online.map().cells);
+}
+
+TEST(ScanSlam, IsThePerScanPathInInteger) {
+  expect_scan_slam_is_the_per_scan_path<IndexProbabilities>(Arithmetic::integer);
+}
+
+TEST(ScanSlam, IsThePerScanPathInDouble) {
+  expect_scan_slam_is_the_per_scan_path<DoubleProbabilities>(Arithmetic::floating);
+}
+
+TEST(ScanSlam, RefusesAScanOfAnotherGeometryNamingIt) {
+  const Log& log = loop_log().log;
+  ScanSlam slam(loop_config(), Arithmetic::integer, log.scans.front(), 5.0);
+  slam.insert(log.scans[0]);
+  Scan other = log.scans[1];
+  other.sensor_mount.x += 0.01;
+  try {
+    slam.insert(other);
+    FAIL() << "accepted another sensor mount";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("scan 2 (t = 1000.200000) has another sensor mount"),
+              std::string::npos)
+        << e.what();
+  }
+  Scan far = log.scans[1];
+  far.robot.x += 2000.0;
+  EXPECT_THROW(slam.insert(far), std::invalid_argument);
 }
 
 }  // namespace

@@ -597,4 +597,10 @@ GlobalEstimate localize_global(const LocalizationMap& map, std::span<const Range
   return estimate;
 }
 
+GlobalEstimate localize_scan(const LocalizationMap& map, const core::Scan& scan, int beams,
+                             GlobalMethod method, PoseScores* scores) {
+  const std::vector<RangeReading> readings = readings_of(scan, beams, map.config().max_range);
+  return localize_global(map, readings, scan.sensor_mount, method, scores);
+}
+
 }  // namespace intgrid::localization

@@ -101,7 +101,7 @@ void GridSlam<Pr>::check_window_inside_map() const {
 }
 
 template <class Pr>
-void GridSlam<Pr>::process(const SlamScan& scan) {
+void GridSlam<Pr>::process(const QuantizedScan& scan) {
   if (scan.range_mm.size() != setup_.sensor.bearing.size())
     core::fail<std::invalid_argument>("SLAM: a scan has " + std::to_string(scan.range_mm.size()) +
                                       " ranges, the sensor " +
@@ -114,11 +114,11 @@ void GridSlam<Pr>::process(const SlamScan& scan) {
     ++skipped_;
   } else {
     const SlamConfig& c = setup_.config;
-    if (mappings_ > 0 && scans_ % static_cast<std::size_t>(c.lambda) == 0) {
+    if (mappings_ > 0 && scans_ % static_cast<std::size_t>(c.schedule.lambda) == 0) {
       localize(scan);
       ++localizations_;
     }
-    if (scans_ % static_cast<std::size_t>(c.xi) == 0) {
+    if (scans_ % static_cast<std::size_t>(c.schedule.xi) == 0) {
       map_scan(scan);
       ++mappings_;
     }
@@ -139,7 +139,7 @@ void GridSlam<Pr>::normalize() {
 // applied to its (x, y) slice with a separable Gaussian, then spread over the target headings.
 // The new window is centred on the predicted mean.
 template <class Pr>
-void GridSlam<Pr>::motion_update(const SlamScan& scan) {
+void GridSlam<Pr>::motion_update(const QuantizedScan& scan) {
   using slam_detail::floor_div;
   using slam_detail::round_div;
   const std::int64_t dx = scan.odom_dx_mm, dy = scan.odom_dy_mm, dt = scan.odom_dtheta;
@@ -240,12 +240,12 @@ void GridSlam<Pr>::motion_update(const SlamScan& scan) {
 // prod_{c' before c} P_M(e_c'). The rays of each heading are walked once per scan; a pose
 // then reads the map along them at its own cell.
 template <class Pr>
-void GridSlam<Pr>::localize(const SlamScan& scan) {
+void GridSlam<Pr>::localize(const QuantizedScan& scan) {
   const SlamConfig& config = setup_.config;
   const std::size_t count = scan.range_mm.size();
   const std::size_t stride =
-      std::max<std::size_t>(1, (count + static_cast<std::size_t>(config.beams) - 1) /
-                                   static_cast<std::size_t>(config.beams));
+      std::max<std::size_t>(1, (count + static_cast<std::size_t>(config.beam.beams) - 1) /
+                                   static_cast<std::size_t>(config.beam.beams));
   const std::int64_t sigma = setup_.sigma_mm, window = 3 * sigma;
   const std::int64_t width = map_.geometry.width;
   const core::IntegerRays rays = this->rays();
@@ -303,7 +303,7 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
           }
           prob_.multiply_into(joint, prob_.add(sum, prob_.floor));
         }
-        pose = prob_.mul(pose, prob_.root_of(joint, config.tempering));
+        pose = prob_.mul(pose, prob_.root_of(joint, config.beam.tempering));
       }
   normalize();
   for (P& p : pi_)
@@ -314,7 +314,7 @@ void GridSlam<Pr>::localize(const SlamScan& scan) {
 // `a`: for every usable
 // reading, the precomputed narrow ISM laid along its ray; indices of one cell add up.
 template <class Pr>
-void GridSlam<Pr>::add_pose_scan(int cx, int cy, std::int32_t a, const SlamScan& scan) {
+void GridSlam<Pr>::add_pose_scan(int cx, int cy, std::int32_t a, const QuantizedScan& scan) {
   const core::IntegerRays rays = this->rays();
   const auto [mx, my] = rays.rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
   const std::int64_t base = map_index(cx, cy), width = map_.geometry.width;
@@ -333,7 +333,7 @@ void GridSlam<Pr>::add_pose_scan(int cx, int cy, std::int32_t a, const SlamScan&
 // a pose's scan does not reach counting 1/2 for it, fused into M. With one pose the sum is that
 // pose's ISM.
 template <class Pr>
-void GridSlam<Pr>::map_scan(const SlamScan& scan) {
+void GridSlam<Pr>::map_scan(const QuantizedScan& scan) {
   std::vector<std::pair<std::size_t, P>> poses;
   std::size_t mode = 0;
   for (std::size_t q = 0; q < pi_.size(); ++q) {

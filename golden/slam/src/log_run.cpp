@@ -9,42 +9,17 @@
 #include "intgrid/core/failure.hpp"
 #include "intgrid/core/scan_insertion.hpp"
 #include "intgrid/slam/probabilities.hpp"
+#include "intgrid/slam/scan_slam.hpp"
 
 namespace intgrid::slam {
 namespace {
 
-constexpr double kUnitRadians = 2.0 * std::numbers::pi / core::kAngleUnitsPerTurn;
-
 std::string scan_name(const core::Log& log, std::size_t i) {
-  char t[64];
-  std::snprintf(t, sizeof t, "%.6f", log.scans[i].t);
-  return "scan " + std::to_string(i + 1) + " (t = " + t + ")";
+  return scan_label(i + 1, log.scans[i].t);
 }
 
 bool same_pose(const core::Pose2& a, const core::Pose2& b) {
   return a.x == b.x && a.y == b.y && a.theta == b.theta;
-}
-
-template <class Pr>
-void run_with(const SlamSetup& setup, const std::vector<SlamScan>& scans, const core::Log& log,
-              SlamRun& run, const core::Progress& progress) {
-  GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
-  const core::Pose2 frame = log.scans.front().robot;
-  for (std::size_t i = 0; i < scans.size(); ++i) {
-    slam.process(scans[i]);
-    const SlamEstimate e = slam.estimate();
-    const core::Pose2 local{static_cast<double>(e.x_um) * 1e-6, static_cast<double>(e.y_um) * 1e-6,
-                            static_cast<double>(e.theta_q8) / 256.0 * kUnitRadians};
-    core::Pose2 world = core::compose(frame, local);
-    world.theta = core::wrap_angle(world.theta);
-    run.trajectory.push_back({log.scans[i].t, world});
-    run.sigma.push_back(static_cast<double>(e.sigma_um) * 1e-6);
-    if (progress) progress(i + 1, scans.size());
-  }
-  run.map = slam.map();
-  run.localizations = slam.localizations();
-  run.mappings = slam.mappings();
-  run.skipped_scans = slam.skipped_scans();
 }
 
 }  // namespace
@@ -63,12 +38,7 @@ void check_slam_log(const core::Log& log) {
   for (std::size_t i = 1; i < log.scans.size(); ++i) {
     const core::Scan& s = log.scans[i];
     moves = moves || !same_pose(s.robot, first.robot);
-    const char* differs = s.ranges.size() != first.ranges.size()                 ? "beam count"
-                          : s.angle0 != first.angle0 || s.dangle != first.dangle ? "bearings"
-                          : s.max_range != first.max_range                       ? "maximum range"
-                          : !same_pose(s.sensor_mount, first.sensor_mount)       ? "sensor mount"
-                                                                                 : nullptr;
-    if (differs)
+    if (const char* differs = geometry_difference(s, first))
       core::fail<std::invalid_argument>(scan_name(log, i) + " has another " + differs +
                                         " than the first scan; SLAM needs one sensor geometry");
   }
@@ -77,36 +47,13 @@ void check_slam_log(const core::Log& log) {
         "the log has no odometry: no ODOM record, and every scan carries the same robot pose");
 }
 
-std::vector<SlamScan> quantize_scans(const core::Log& log, const SlamConfig& config, SlamRun& run) {
-  std::vector<SlamScan> out;
+std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig& config,
+                                          SlamRun& run) {
+  std::vector<QuantizedScan> out;
   out.reserve(log.scans.size());
-  const long long max_mm = std::llround(config.max_range * 1000.0);
-  for (std::size_t i = 0; i < log.scans.size(); ++i) {
-    const core::Scan& scan = log.scans[i];
-    SlamScan s;
-    s.range_mm.reserve(scan.ranges.size());
-    for (const double r : scan.ranges) {
-      ++run.readings;
-      const long long mm = core::classify_range(r, scan.max_range) == core::RangeClass::valid
-                               ? std::llround(r * 1000.0)
-                               : 0;
-      const bool usable = mm > 0 && mm < max_mm;
-      run.unusable_readings += !usable;
-      s.range_mm.push_back(usable ? static_cast<std::int32_t>(mm) : 0);
-    }
-    if (i > 0) {
-      const core::Pose2 u = core::relative(log.scans[i - 1].robot, scan.robot);
-      if (!std::isfinite(u.x) || !std::isfinite(u.y) || !std::isfinite(u.theta) ||
-          std::hypot(u.x, u.y) > 1000.0)
-        core::fail<std::invalid_argument>(scan_name(log, i) +
-                                          ": the odometry jumps more than 1 km or is not finite");
-      s.odom_dx_mm = static_cast<std::int32_t>(std::llround(u.x * 1000.0));
-      s.odom_dy_mm = static_cast<std::int32_t>(std::llround(u.y * 1000.0));
-      s.odom_dtheta =
-          static_cast<std::int32_t>(std::llround(core::wrap_angle(u.theta) / kUnitRadians));
-    }
-    out.push_back(std::move(s));
-  }
+  for (std::size_t i = 0; i < log.scans.size(); ++i)
+    out.push_back(quantize_scan(log.scans[i], i > 0 ? &log.scans[i - 1].robot : nullptr, config,
+                                scan_name(log, i), run.readings, run.unusable_readings));
   return out;
 }
 
@@ -114,30 +61,42 @@ SlamRun run_slam(const core::Log& log, const SlamConfig& config, core::Arithmeti
                  const core::Progress& progress) {
   check_slam_config(config);
   check_slam_log(log);
-  SlamRun run;
-  const std::vector<SlamScan> scans = quantize_scans(log, config, run);
   const core::Pose2 first = log.scans.front().robot;
   double reach = 0.0;
   for (const core::Scan& s : log.scans)
     reach = std::max(reach, std::hypot(s.robot.x - first.x, s.robot.y - first.y));
-  const SlamSetup setup = make_slam_setup(config, log.scans.front(), reach);
-  run.codec = setup.codec;
-  run.scans = scans.size();
-  if (arithmetic == core::Arithmetic::integer)
-    run_with<IndexProbabilities>(setup, scans, log, run, progress);
-  else
-    run_with<DoubleProbabilities>(setup, scans, log, run, progress);
-  run.frame = first;
+  ScanSlam slam(config, arithmetic, log.scans.front(), reach);
+  SlamRun run;
+  for (std::size_t i = 0; i < log.scans.size(); ++i) {
+    slam.insert(log.scans[i]);
+    run.trajectory.push_back({log.scans[i].t, slam.pose()});
+    run.sigma.push_back(slam.sigma());
+    if (progress) progress(i + 1, log.scans.size());
+  }
+  run.map = slam.map();
+  run.codec = slam.codec();
+  run.frame = slam.frame();
+  run.scans = slam.scans();
+  run.localizations = slam.localizations();
+  run.mappings = slam.mappings();
+  run.skipped_scans = slam.skipped_scans();
+  run.readings = slam.readings();
+  run.unusable_readings = slam.unusable_readings();
   return run;
 }
 
 core::ProbabilityGrid slam_map_probabilities(const SlamRun& run) {
-  // The part of the map that any scan reached, and 10 cells around it.
-  const core::GridGeometry& full = run.map.geometry;
+  return slam_map_probabilities(run.map, run.codec, run.frame);
+}
+
+core::ProbabilityGrid slam_map_probabilities(const core::Grid<std::int8_t>& map,
+                                             const core::SepsCodec& codec,
+                                             const core::Pose2& frame) {
+  const core::GridGeometry& full = map.geometry;
   int x0 = full.width, y0 = full.height, x1 = -1, y1 = -1;
   for (int iy = 0; iy < full.height; ++iy)
     for (int ix = 0; ix < full.width; ++ix)
-      if (run.map.at(ix, iy) != 0) {
+      if (map.at(ix, iy) != 0) {
         x0 = std::min(x0, ix);
         y0 = std::min(y0, iy);
         x1 = std::max(x1, ix);
@@ -151,9 +110,9 @@ core::ProbabilityGrid slam_map_probabilities(const SlamRun& run) {
   core::GridGeometry g{x1 - x0 + 1, y1 - y0 + 1, full.resolution,
                        full.origin_x + x0 * full.resolution, full.origin_y + y0 * full.resolution};
   const auto probability = [&](int ix, int iy) {
-    return run.codec.probability(run.map.at(ix + x0, iy + y0));
+    return codec.probability(map.at(ix + x0, iy + y0));
   };
-  const core::Pose2& f = run.frame;
+  const core::Pose2& f = frame;
   if (f.theta == 0.0) {
     g.origin_x += f.x;
     g.origin_y += f.y;

@@ -38,35 +38,39 @@ void check_slam_config(const SlamConfig& c) {
   require(c.headings >= 8 && c.headings <= core::kAngleUnitsPerTurn &&
               (c.headings & (c.headings - 1)) == 0,
           "headings", "must be a power of two from 8 to 65536");
-  require(c.window_cells >= 1 && c.window_cells <= 255 && c.window_cells % 2 == 1, "window_cells",
+  require(c.window.cells >= 1 && c.window.cells <= 255 && c.window.cells % 2 == 1, "window.cells",
           "must be odd, 1..255");
-  require(c.window_headings >= 1 && c.window_headings <= 255 && c.window_headings % 2 == 1 &&
-              c.window_headings <= c.headings,
-          "window_headings", "must be odd, 1..255 and at most headings");
-  require(c.lambda >= 1, "lambda", "must be >= 1");
-  require(c.xi >= 1, "xi", "must be >= 1");
-  require(positive(c.sigma) && c.sigma >= 0.001, "sigma", "must be at least 1 mm");
-  require(positive(c.likelihood_floor) && c.likelihood_floor < 1.0, "likelihood_floor",
-          "must be in (0, 1)");
-  require(c.beams >= 1, "beams", "must be >= 1");
-  require(c.empty_divisor >= 1 && c.empty_divisor <= 127, "empty_divisor", "must be 1..127");
-  require(c.tempering >= 1 && c.tempering <= 1000, "tempering", "must be 1..1000");
-  require(positive(c.max_range) && c.max_range <= 1000.0, "max_range",
+  require(c.window.headings >= 1 && c.window.headings <= 255 && c.window.headings % 2 == 1 &&
+              c.window.headings <= c.headings,
+          "window.headings", "must be odd, 1..255 and at most headings");
+  require(c.schedule.lambda >= 1, "schedule.lambda", "must be >= 1");
+  require(c.schedule.xi >= 1, "schedule.xi", "must be >= 1");
+  require(positive(c.beam.sigma) && c.beam.sigma >= 0.001, "beam.sigma", "must be at least 1 mm");
+  require(positive(c.beam.likelihood_floor) && c.beam.likelihood_floor < 1.0,
+          "beam.likelihood_floor", "must be in (0, 1)");
+  require(c.beam.beams >= 1, "beam.beams", "must be >= 1");
+  require(c.map.empty_divisor >= 1 && c.map.empty_divisor <= 127, "map.empty_divisor",
+          "must be 1..127");
+  require(c.beam.tempering >= 1 && c.beam.tempering <= 1000, "beam.tempering", "must be 1..1000");
+  require(positive(c.beam.max_range) && c.beam.max_range <= 1000.0, "beam.max_range",
           "must be in (0, 1000] metres");
-  require(std::isfinite(c.pose_cutoff) && c.pose_cutoff > 0.0 && c.pose_cutoff <= 1.0,
-          "pose_cutoff", "must be in (0, 1]");
-  require(std::isfinite(c.pose_prune) && c.pose_prune >= 0.0 && c.pose_prune < c.pose_cutoff,
-          "pose_prune", "must be in [0, pose_cutoff)");
-  for (const double v : {c.motion_xy0, c.motion_xy_per_m, c.motion_xy_per_rad, c.motion_theta0,
-                         c.motion_theta_per_m, c.motion_theta_per_rad})
-    require(non_negative(v) && v < 100.0, "motion noise", "must be finite, >= 0 and < 100");
-  require(c.seps_bits >= 2 && c.seps_bits <= 8, "seps_bits", "must be 2..8 (the map is 8-bit)");
-  require(c.seps_levels >= 1 && c.seps_levels < (1 << (c.seps_bits - 1)), "seps_levels",
-          "must be >= 1 and below the largest index");
-  require(c.ugamma_bits >= 12 && c.ugamma_bits <= 24, "ugamma_bits", "must be 12..24");
-  require(c.ugamma_steps_per_halving >= 1 && c.ugamma_steps_per_halving <= 256,
-          "ugamma_steps_per_halving", "must be 1..256");
-  require(non_negative(c.map_margin) && c.map_margin <= 1000.0, "map_margin",
+  require(std::isfinite(c.window.pose_cutoff) && c.window.pose_cutoff > 0.0 &&
+              c.window.pose_cutoff <= 1.0,
+          "window.pose_cutoff", "must be in (0, 1]");
+  require(std::isfinite(c.window.pose_prune) && c.window.pose_prune >= 0.0 &&
+              c.window.pose_prune < c.window.pose_cutoff,
+          "window.pose_prune", "must be in [0, window.pose_cutoff)");
+  for (const double v : {c.motion.xy0, c.motion.xy_per_m, c.motion.xy_per_rad, c.motion.theta0,
+                         c.motion.theta_per_m, c.motion.theta_per_rad})
+    require(non_negative(v) && v < 100.0, "motion", "must be finite, >= 0 and < 100");
+  require(c.map.seps_bits >= 2 && c.map.seps_bits <= 8, "map.seps_bits",
+          "must be 2..8 (the map is 8-bit)");
+  require(c.map.seps_levels >= 1 && c.map.seps_levels < (1 << (c.map.seps_bits - 1)),
+          "map.seps_levels", "must be >= 1 and below the largest index");
+  require(c.ugamma.bits >= 12 && c.ugamma.bits <= 24, "ugamma.bits", "must be 12..24");
+  require(c.ugamma.steps_per_halving >= 1 && c.ugamma.steps_per_halving <= 256,
+          "ugamma.steps_per_halving", "must be 1..256");
+  require(non_negative(c.map.margin) && c.map.margin <= 1000.0, "map.margin",
           "must be in [0, 1000]");
 }
 
@@ -77,8 +81,8 @@ SlamSetup make_slam_setup(const SlamConfig& config, const core::Scan& geometry, 
   SlamSetup s;
   s.config = config;
   s.cell_mm = millimetres(config.cell);
-  s.sigma_mm = std::max<std::int32_t>(1, millimetres(config.sigma));
-  s.max_range_mm = millimetres(config.max_range);
+  s.sigma_mm = std::max<std::int32_t>(1, millimetres(config.beam.sigma));
+  s.max_range_mm = millimetres(config.beam.max_range);
 
   for (std::size_t i = 0; i < geometry.ranges.size(); ++i)
     s.sensor.bearing.push_back(angle_units(geometry.bearing(i)));
@@ -93,9 +97,9 @@ SlamSetup make_slam_setup(const SlamConfig& config, const core::Scan& geometry, 
   // ray of every window pose (GridSlam::check_window_inside_map) while the odometry stays
   // within reach_m.
   const double half_m =
-      reach_m + config.max_range + 3.0 * config.sigma + 2.0 * mount + config.map_margin;
+      reach_m + config.beam.max_range + 3.0 * config.beam.sigma + 2.0 * mount + config.map.margin;
   const auto half =
-      static_cast<long long>(std::ceil(half_m / config.cell)) + config.window_cells / 2 + 4;
+      static_cast<long long>(std::ceil(half_m / config.cell)) + config.window.cells / 2 + 4;
   if (2 * half + 1 > 65535)
     core::fail<std::invalid_argument>("SLAM: the map would exceed 65535 cells a side");
   s.origin_cell_x = s.origin_cell_y = static_cast<int>(half);
@@ -108,20 +112,21 @@ SlamSetup make_slam_setup(const SlamConfig& config, const core::Scan& geometry, 
   s.sin_q16 = core::make_sine_table_q16();
 
   // The narrow ISM of every reading on a grid of z_step, as the map job's integer path makes it.
-  s.codec = core::SepsCodec::for_levels(
-      config.seps_bits, core::narrow_pmax(config.cell, config.sigma), config.seps_levels);
+  s.codec = core::SepsCodec::for_levels(config.map.seps_bits,
+                                        core::narrow_pmax(config.cell, config.beam.sigma),
+                                        config.map.seps_levels);
   s.max_seps_index = s.codec.max_index();
-  s.ism = core::make_index_ism_table(core::GaussianBeamModel{config.sigma, 0.0}, config.cell,
+  s.ism = core::make_index_ism_table(core::GaussianBeamModel{config.beam.sigma, 0.0}, config.cell,
                                      s.codec, std::max<std::int32_t>(1, s.cell_mm / 8),
-                                     s.max_range_mm, config.empty_divisor);
+                                     s.max_range_mm, config.map.empty_divisor);
 
   const double unit_rad = 2.0 * std::numbers::pi / core::kAngleUnitsPerTurn;
-  s.motion_xy0_mm = millimetres(config.motion_xy0);
-  s.motion_xy_per_mm_q16 = std::llround(config.motion_xy_per_m * 65536.0);
-  s.motion_xy_per_unit_q16 = std::llround(config.motion_xy_per_rad * 1000.0 * unit_rad * 65536.0);
-  s.motion_theta0 = angle_units(config.motion_theta0);
-  s.motion_theta_per_mm_q16 = std::llround(config.motion_theta_per_m / unit_rad / 1000.0 * 65536.0);
-  s.motion_theta_per_unit_q16 = std::llround(config.motion_theta_per_rad * 65536.0);
+  s.motion_xy0_mm = millimetres(config.motion.xy0);
+  s.motion_xy_per_mm_q16 = std::llround(config.motion.xy_per_m * 65536.0);
+  s.motion_xy_per_unit_q16 = std::llround(config.motion.xy_per_rad * 1000.0 * unit_rad * 65536.0);
+  s.motion_theta0 = angle_units(config.motion.theta0);
+  s.motion_theta_per_mm_q16 = std::llround(config.motion.theta_per_m / unit_rad / 1000.0 * 65536.0);
+  s.motion_theta_per_unit_q16 = std::llround(config.motion.theta_per_rad * 65536.0);
   return s;
 }
 
@@ -129,9 +134,9 @@ template <>
 DoubleProbabilities make_probabilities<DoubleProbabilities>(const SlamSetup& setup) {
   DoubleProbabilities p;
   p.codec = setup.codec;
-  p.floor = setup.config.likelihood_floor;
-  p.cutoff = setup.config.pose_cutoff;
-  p.prune = setup.config.pose_prune;
+  p.floor = setup.config.beam.likelihood_floor;
+  p.cutoff = setup.config.window.pose_cutoff;
+  p.prune = setup.config.window.pose_prune;
   p.max_seps = setup.max_seps_index;
   for (int n = -p.max_seps; n <= p.max_seps; ++n) {
     p.occupied_of.push_back(setup.codec.probability(n));
@@ -143,10 +148,10 @@ DoubleProbabilities make_probabilities<DoubleProbabilities>(const SlamSetup& set
 template <>
 IndexProbabilities make_probabilities<IndexProbabilities>(const SlamSetup& setup) {
   IndexProbabilities p;
-  p.u = core::UGamma(setup.config.ugamma_bits, setup.config.ugamma_steps_per_halving);
-  p.floor = p.u.from_probability(setup.config.likelihood_floor);
-  p.cutoff = p.u.from_probability(setup.config.pose_cutoff);
-  p.prune = p.u.from_probability(setup.config.pose_prune);
+  p.u = core::UGamma(setup.config.ugamma.bits, setup.config.ugamma.steps_per_halving);
+  p.floor = p.u.from_probability(setup.config.beam.likelihood_floor);
+  p.cutoff = p.u.from_probability(setup.config.window.pose_cutoff);
+  p.prune = p.u.from_probability(setup.config.window.pose_prune);
   p.max_seps = setup.max_seps_index;
   const double lambda = setup.codec.lambda();
   for (int n = -p.max_seps; n <= p.max_seps; ++n) {
@@ -154,7 +159,7 @@ IndexProbabilities make_probabilities<IndexProbabilities>(const SlamSetup& setup
     p.occupied_of.push_back(p.u.from_log(-std::log1p(std::exp(-n * lambda))));
     p.empty_of.push_back(p.u.from_log(-std::log1p(std::exp(n * lambda))));
   }
-  const double ln_inv_gamma = std::log(2.0) / setup.config.ugamma_steps_per_halving;
+  const double ln_inv_gamma = std::log(2.0) / setup.config.ugamma.steps_per_halving;
   p.gaussian_q20 = std::llround(std::ldexp(1.0, 20) / (2.0 * ln_inv_gamma));
   p.seps_per_step_q16 = std::llround(65536.0 * ln_inv_gamma / lambda);
   for (core::UIndex i = 0;; ++i) {
@@ -170,8 +175,8 @@ GridSlam<Pr>::GridSlam(const SlamSetup& setup, Pr probabilities)
     : setup_(setup),
       prob_(std::move(probabilities)),
       map_(setup.map_geometry, std::int8_t{0}),
-      n_(setup.config.window_cells),
-      nt_(setup.config.window_headings) {
+      n_(setup.config.window.cells),
+      nt_(setup.config.window.headings) {
   const std::size_t poses =
       static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_) * static_cast<std::size_t>(nt_);
   pi_.assign(poses, prob_.zero());
@@ -190,7 +195,7 @@ GridSlam<Pr>::GridSlam(const SlamSetup& setup, Pr probabilities)
   // A localization walks at most `beams` rays per heading, each to max_range + 3 sigma: a walk
   // of length L crosses at most sqrt(2) L / cell + 2 cells.
   const std::size_t count = setup.sensor.bearing.size();
-  const std::size_t beams = static_cast<std::size_t>(setup.config.beams);
+  const std::size_t beams = static_cast<std::size_t>(setup.config.beam.beams);
   const std::size_t stride = std::max<std::size_t>(1, (count + beams - 1) / beams);
   const std::size_t rays_per_heading = (count + stride / 2) / stride + 1;
   const std::size_t cells_per_ray =

@@ -1,10 +1,15 @@
 #include "intgrid/io/map_io.hpp"
 
+#include <png.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <csetjmp>
+#include <cstring>
+#include <limits>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -23,6 +28,14 @@ namespace fs = std::filesystem;
 
 constexpr int kMaxPixelValue = 255;
 constexpr long long kMaxPixels = 1LL << 31;
+
+// How pixels become P(occupied); see read_ros_map in the header.
+enum class MapMode {
+  linear,  // no mode key: P itself, thresholds left to the user of the map
+  trinary,
+  scale,
+  raw,
+};
 
 // ---- YAML ----
 
@@ -86,6 +99,7 @@ struct MapDescription {
   bool negate = false;
   double occupied_thresh = 0.0;
   double free_thresh = 0.0;
+  MapMode mode = MapMode::linear;
 };
 
 // The field at fault and why, or nullopt if the thresholds are usable.
@@ -103,7 +117,7 @@ std::optional<std::pair<std::string, std::string>> threshold_problem(double occu
 fs::path read_image_path(const MapYaml& yaml) {
   const YAML::Node node = yaml.required("image");
   const fs::path image = yaml.text(node, "image");
-  if (image.empty()) yaml.fail(node, "image", "must name the PGM file");
+  if (image.empty()) yaml.fail(node, "image", "must name the image file (PGM or PNG)");
   return image.is_absolute() ? image : yaml.file().parent_path() / image;
 }
 
@@ -119,13 +133,15 @@ void read_origin(const MapYaml& yaml, MapDescription& map) {
   }
 }
 
-void check_mode(const MapYaml& yaml) {
+// As map_server, the names are case-sensitive.
+MapMode read_mode(const MapYaml& yaml) {
   const YAML::Node mode = yaml.optional("mode");
-  if (!mode) return;
+  if (!mode) return MapMode::linear;
   const std::string name = yaml.text(mode, "mode");
-  if (name != "trinary" && name != "scale") {
-    yaml.fail(mode, "mode", "unsupported mode \"" + name + "\" (trinary or scale)");
-  }
+  if (name == "trinary") return MapMode::trinary;
+  if (name == "scale") return MapMode::scale;
+  if (name == "raw") return MapMode::raw;
+  yaml.fail(mode, "mode", "unknown mode \"" + name + "\" (trinary, scale or raw)");
 }
 
 MapDescription read_map_description(const fs::path& file) {
@@ -150,7 +166,7 @@ MapDescription read_map_description(const fs::path& file) {
   if (const auto problem = threshold_problem(map.occupied_thresh, map.free_thresh)) {
     yaml.fail(yaml.required(problem->first), problem->first, problem->second);
   }
-  check_mode(yaml);
+  map.mode = read_mode(yaml);
   return map;
 }
 
@@ -171,14 +187,20 @@ std::string map_yaml_text(const std::string& image_name, const RosMap& map) {
   return std::string(out.c_str()) + "\n";
 }
 
-// ---- PGM ----
+// ---- Images ----
 
-// An 8-bit grey image, row 0 at the top.
-struct PgmImage {
+// A decoded map image, row 0 at the top. Each pixel is `channels` samples of 8 or 16 bits (16-bit
+// ones big-endian, as PNG stores them): grey or red, green, blue, then alpha if there is one.
+struct MapImage {
   int width = 0;
   int height = 0;
-  std::vector<std::uint8_t> pixels;
+  int channels = 1;  // 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA
+  int bit_depth = 8;
+  std::size_t row_bytes = 0;
+  std::vector<std::uint8_t> samples;
 };
+
+// ---- PGM ----
 
 bool is_pgm_space(char c) {
   return std::isspace(static_cast<unsigned char>(c)) != 0;
@@ -289,15 +311,14 @@ std::vector<std::uint8_t> read_ascii_pixels(const fs::path& file, PgmTokens& tok
   return pixels;
 }
 
-PgmImage read_pgm(const fs::path& file) {
-  const std::string data = read_input_file(file);
+MapImage read_pgm(const fs::path& file, std::string_view data) {
   PgmTokens tokens(file, data);
   const std::string_view magic = tokens.next().value_or("");
   if (magic != "P5" && magic != "P2") {
-    tokens.fail("magic", "expected P5 (binary PGM) or P2 (ASCII PGM), found \"" +
+    tokens.fail("magic", "expected P5 (binary PGM), P2 (ASCII PGM) or a PNG signature, found \"" +
                              printable(magic.substr(0, 8)) + "\"");
   }
-  PgmImage image;
+  MapImage image;
   image.width = read_dimension(tokens, "width");
   image.height = read_dimension(tokens, "height");
   const std::size_t size_line = tokens.line();
@@ -311,11 +332,230 @@ PgmImage read_pgm(const fs::path& file) {
                 "only 8-bit PGMs (maxval 255) are supported, got " + std::to_string(maxval));
   }
   const auto expected = static_cast<std::size_t>(pixel_count);
-  image.pixels = magic == "P5"
-                     ? read_binary_pixels(file, data, tokens.offset(), size_line, expected)
-                     : read_ascii_pixels(file, tokens, size_line, expected);
+  image.row_bytes = static_cast<std::size_t>(image.width);
+  image.samples = magic == "P5"
+                      ? read_binary_pixels(file, data, tokens.offset(), size_line, expected)
+                      : read_ascii_pixels(file, tokens, size_line, expected);
   return image;
 }
+
+// ---- PNG ----
+
+bool has_png_signature(std::string_view data) {
+  constexpr std::size_t kSignatureBytes = 8;
+  return data.size() >= kSignatureBytes &&
+         png_sig_cmp(reinterpret_cast<png_const_bytep>(data.data()), 0, kSignatureBytes) == 0;
+}
+
+// libpng reports errors by longjmp to the setjmp in decode_png_header or decode_png_pixels.
+// Everything a jump can cross is plain data: the libpng frames, the callbacks below and those
+// two functions, none of which holds an object with a destructor.
+struct PngReadState {
+  const png_byte* data = nullptr;
+  std::size_t size = 0;
+  std::size_t offset = 0;
+  bool truncated = false;
+  char message[256] = {};
+};
+
+void png_read_from_memory(png_structp png, png_bytep out, png_size_t length) {
+  auto* state = static_cast<PngReadState*>(png_get_io_ptr(png));
+  if (length > state->size - state->offset) {
+    state->truncated = true;
+    png_error(png, "the file ends early");
+  }
+  std::memcpy(out, state->data + state->offset, length);
+  state->offset += length;
+}
+
+[[noreturn]] void png_on_error(png_structp png, png_const_charp message) {
+  auto* state = static_cast<PngReadState*>(png_get_error_ptr(png));
+  std::strncpy(state->message, message != nullptr ? message : "unknown error",
+               sizeof state->message - 1);
+  png_longjmp(png, 1);
+}
+
+// Warnings (an odd colour profile, a damaged ancillary chunk that libpng skips) leave the
+// pixels intact.
+void png_on_warning(png_structp, png_const_charp) {}
+
+// Owns libpng's read and info structures.
+class PngReader {
+ public:
+  explicit PngReader(PngReadState& state)
+      : png_(png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, png_on_error, png_on_warning)) {
+    if (png_ != nullptr) info_ = png_create_info_struct(png_);
+    if (info_ == nullptr) {
+      png_destroy_read_struct(&png_, nullptr, nullptr);
+      throw std::bad_alloc();
+    }
+    png_set_read_fn(png_, &state, png_read_from_memory);
+  }
+  ~PngReader() { png_destroy_read_struct(&png_, &info_, nullptr); }
+  PngReader(const PngReader&) = delete;
+  PngReader& operator=(const PngReader&) = delete;
+
+  png_structp png() const { return png_; }
+  png_infop info() const { return info_; }
+
+ private:
+  png_structp png_ = nullptr;
+  png_infop info_ = nullptr;
+};
+
+struct PngLayout {
+  png_uint_32 width = 0;
+  png_uint_32 height = 0;
+  int channels = 0;
+  int bit_depth = 0;
+  std::size_t row_bytes = 0;
+};
+
+// Reads the chunks before the image data and sets up the transforms that leave 8- or 16-bit
+// grey, grey + alpha, RGB or RGBA: palettes become RGB, 1/2/4-bit grey 8-bit, a tRNS chunk an
+// alpha channel. No gamma or colour-profile conversion: the samples are read as stored, as
+// map_server reads them. False, with the message in the read state, if libpng fails.
+bool decode_png_header(png_structp png, png_infop info, PngLayout& layout) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  // The size is bounded below, as for PGMs; libpng's own default limit is 10^6 a side.
+  png_set_user_limits(png, PNG_UINT_31_MAX, PNG_UINT_31_MAX);
+  png_read_info(png, info);
+  const png_byte color_type = png_get_color_type(png, info);
+  if (color_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+  if (color_type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8) {
+    png_set_expand_gray_1_2_4_to_8(png);
+  }
+  if (png_get_valid(png, info, PNG_INFO_tRNS) != 0) png_set_tRNS_to_alpha(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  layout.width = png_get_image_width(png, info);
+  layout.height = png_get_image_height(png, info);
+  layout.channels = png_get_channels(png, info);
+  layout.bit_depth = png_get_bit_depth(png, info);
+  layout.row_bytes = png_get_rowbytes(png, info);
+  return true;
+}
+
+// Decodes the image into rows, then reads on to the end chunk, so that a file cut short after
+// its image data is an error too. False, with the message in the read state, if libpng fails.
+bool decode_png_pixels(png_structp png, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_read_image(png, rows);
+  png_read_end(png, nullptr);
+  return true;
+}
+
+InputError png_decode_error(const fs::path& file, const PngReadState& state,
+                            const std::string& field) {
+  if (state.truncated) {
+    return InputError(file, 0, field,
+                      "truncated PNG: the file ends after " + std::to_string(state.size) +
+                          " bytes, inside the " + (field == "header" ? "header" : "image data"));
+  }
+  return InputError(file, 0, field, std::string("corrupt PNG: ") + state.message);
+}
+
+MapImage read_png(const fs::path& file, std::string_view data) {
+  PngReadState state;
+  state.data = reinterpret_cast<const png_byte*>(data.data());
+  state.size = data.size();
+  const PngReader reader(state);
+  PngLayout layout;
+  if (!decode_png_header(reader.png(), reader.info(), layout)) {
+    throw png_decode_error(file, state, "header");
+  }
+  // libpng has checked that both sizes are positive and below 2^31.
+  const long long pixel_count = static_cast<long long>(layout.width) * layout.height;
+  if (pixel_count > kMaxPixels) {
+    throw InputError(file, 0, "height",
+                     "width * height = " + std::to_string(pixel_count) + " exceeds 2^31");
+  }
+  MapImage image;
+  image.width = static_cast<int>(layout.width);
+  image.height = static_cast<int>(layout.height);
+  image.channels = layout.channels;
+  image.bit_depth = layout.bit_depth;
+  image.row_bytes = layout.row_bytes;
+  image.samples.resize(image.row_bytes * layout.height);
+  std::vector<png_bytep> rows(layout.height);
+  for (std::size_t row = 0; row < rows.size(); ++row) {
+    rows[row] = image.samples.data() + row * image.row_bytes;
+  }
+  if (!decode_png_pixels(reader.png(), rows.data())) {
+    throw png_decode_error(file, state, "pixels");
+  }
+  return image;
+}
+
+// A PNG by its signature, whatever the file's name; anything else must be a PGM.
+MapImage read_map_image(const fs::path& file) {
+  const std::string data = read_input_file(file);
+  return has_png_signature(data) ? read_png(file, data) : read_pgm(file, data);
+}
+
+// ---- Pixels to P(occupied) ----
+
+// Turns one pixel into the P(occupied) of its cell, following the map's mode.
+class PixelReading {
+ public:
+  PixelReading(const MapDescription& map, const MapImage& image)
+      : map_(map),
+        sample_bytes_(image.bit_depth == 16 ? 2 : 1),
+        colour_channels_(image.channels >= 3 ? 3 : 1),
+        has_alpha_(image.channels == 2 || image.channels == 4),
+        max_value_(image.bit_depth == 16 ? 65535.0 : 255.0) {}
+
+  std::size_t pixel_bytes() const {
+    return static_cast<std::size_t>((colour_channels_ + (has_alpha_ ? 1 : 0)) * sample_bytes_);
+  }
+
+  double operator()(const std::uint8_t* pixel) const {
+    double sum = 0.0;
+    for (int channel = 0; channel < colour_channels_; ++channel) sum += sample(pixel, channel);
+    const double mean = sum / colour_channels_;
+    const bool opaque = !has_alpha_ || sample(pixel, colour_channels_) == max_value_;
+    return probability(mean, opaque);
+  }
+
+ private:
+  double sample(const std::uint8_t* pixel, int channel) const {
+    const std::uint8_t* p = pixel + channel * sample_bytes_;
+    return sample_bytes_ == 2 ? (p[0] << 8) | p[1] : p[0];
+  }
+
+  double probability(double mean, bool opaque) const {
+    constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+    switch (map_.mode) {
+      case MapMode::linear: {
+        if (!opaque) return kUnknown;
+        // The arithmetic of the PGM-only reader, bit for bit.
+        const double level = mean / max_value_;
+        return map_.negate ? level : 1.0 - level;
+      }
+      case MapMode::raw: {
+        // The value as an 8-bit sample, whatever negate and alpha say, as map_server.
+        const double percent = std::round(mean * 255.0 / max_value_);
+        return percent <= 100.0 ? percent / 100.0 : kUnknown;
+      }
+      case MapMode::trinary:
+      case MapMode::scale: {
+        if (!opaque) return kUnknown;
+        // map_server's p = (255 - v) / 255, or v / 255 if negate.
+        const double p = map_.negate ? mean / max_value_ : (max_value_ - mean) / max_value_;
+        if (p > map_.occupied_thresh) return 1.0;
+        if (p < map_.free_thresh) return 0.0;
+        return map_.mode == MapMode::scale ? p : kUnknown;
+      }
+    }
+    return kUnknown;
+  }
+
+  const MapDescription& map_;
+  int sample_bytes_;
+  int colour_channels_;
+  bool has_alpha_;
+  double max_value_;
+};
 
 std::string pgm_bytes(const core::ProbabilityGrid& grid, bool negate) {
   const core::GridGeometry& geometry = grid.geometry;
@@ -328,11 +568,6 @@ std::string pgm_bytes(const core::ProbabilityGrid& grid, bool negate) {
     }
   }
   return out;
-}
-
-double pixel_to_probability(std::uint8_t pixel, bool negate) {
-  const double level = pixel / 255.0;
-  return negate ? level : 1.0 - level;
 }
 
 void check_writable(const fs::path& yaml, const RosMap& map) {
@@ -364,7 +599,7 @@ std::uint8_t probability_to_pixel(double p, bool negate) {
 
 RosMap read_ros_map(const fs::path& yaml) {
   const MapDescription description = read_map_description(yaml);
-  const PgmImage image = read_pgm(description.image);
+  const MapImage image = read_map_image(description.image);
   const core::GridGeometry geometry{image.width, image.height, description.resolution,
                                     description.origin_x, description.origin_y};
   RosMap map;
@@ -372,12 +607,14 @@ RosMap read_ros_map(const fs::path& yaml) {
   map.occupied_thresh = description.occupied_thresh;
   map.free_thresh = description.free_thresh;
   map.negate = description.negate;
-  // PGM row 0 is the top of the map, grid row 0 the bottom.
+  const PixelReading reading(description, image);
+  const std::size_t pixel_bytes = reading.pixel_bytes();
+  // Image row 0 is the top of the map, grid row 0 the bottom.
   for (int row = 0; row < image.height; ++row) {
-    const std::size_t row_start = static_cast<std::size_t>(row) * image.width;
-    for (int ix = 0; ix < image.width; ++ix) {
-      map.grid.at(ix, image.height - 1 - row) =
-          pixel_to_probability(image.pixels[row_start + ix], map.negate);
+    const std::uint8_t* pixel =
+        image.samples.data() + static_cast<std::size_t>(row) * image.row_bytes;
+    for (int ix = 0; ix < image.width; ++ix, pixel += pixel_bytes) {
+      map.grid.at(ix, image.height - 1 - row) = reading(pixel);
     }
   }
   return map;

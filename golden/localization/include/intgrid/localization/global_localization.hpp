@@ -257,4 +257,9 @@ GlobalEstimate localize_global(const LocalizationMap& map, std::span<const Range
                                const core::Pose2& sensor_mount, GlobalMethod method,
                                PoseScores* scores = nullptr);
 
+// The same for one scan, in SI units as every algorithm takes it: `beams` of its usable readings
+// (readings_of; all when beams <= 0), with the scan's sensor mount.
+GlobalEstimate localize_scan(const LocalizationMap& map, const core::Scan& scan, int beams,
+                             GlobalMethod method, PoseScores* scores = nullptr);
+
 }  // namespace intgrid::localization

@@ -24,50 +24,75 @@
 
 namespace intgrid::slam {
 
+// The options of a run, nested by concern. Defaults: chosen on the bundled real log and the
+// simulated floor (docs/results.md says which data chose which).
 struct SlamConfig {
-  double cell = 0.1;      // map cell and pose-grid step (m), a whole number of millimetres
-  int headings = 1024;    // heading bins per turn: a power of two, 8..65536
-  int window_cells = 11;  // pose-grid cells per side in x and y (odd)
-  // Pose-grid heading bins (odd): +-10.5 degrees at 1024, as the odometry's heading can miss
-  // by several degrees in one scan and the motion model reaches only 3 sigma from its mean.
-  int window_headings = 61;
-  int lambda = 1;                  // localization every lambda-th scan
-  int xi = 1;                      // mapping every xi-th scan
-  double sigma = 0.05;             // range noise of the beam model (m)
-  double likelihood_floor = 1e-3;  // p(z | x, M) for readings the map cannot explain
-  int beams = 90;                  // readings a localization uses, spread evenly over the scan
-  // The localization multiplies Pi by the beams' likelihood raised to 1 / tempering: the beams
-  // of one scan are not independent (those on one wall share its error in the map), and treating
-  // them so collapses Pi onto one cell, whose mean then carries the lattice's rounding. 16 is the
-  // smallest tempering at which the bundled real log's E(sigma) reaches that rounding,
-  // cell sqrt(2/12) (41 mm at 10 cm), in both arithmetics (README).
-  int tempering = 16;
-  double max_range = 30.0;    // readings at or past this are not used (m)
-  double pose_cutoff = 0.01;  // mapping skips poses less probable than this
-  // A localization drops the poses it leaves less probable than this, so that the next one
-  // weighs the poses the motion model carries the rest to, not the whole window. Low, as the
-  // far tail is what recovers from an odometry glitch: at 1e-20 the real log's double run
-  // already changes (README).
-  double pose_prune = 1e-40;
+  double cell = 0.1;    // map cell and pose-grid step (m), a whole number of millimetres
+  int headings = 1024;  // heading bins per turn: a power of two, 8..65536
+
+  // When the events run: localization every lambda-th scan, mapping every xi-th.
+  struct Schedule {
+    int lambda = 1;
+    int xi = 1;
+  } schedule;
+
+  // The beam model of the localization event.
+  struct BeamModel {
+    double sigma = 0.05;             // range noise (m)
+    double likelihood_floor = 1e-3;  // p(z | x, M) for readings the map cannot explain
+    int beams = 90;                  // readings a localization uses, spread evenly over the scan
+    // The localization multiplies Pi by the beams' likelihood raised to 1 / tempering: the beams
+    // of one scan are not independent (those on one wall share its error in the map), and
+    // treating them so collapses Pi onto one cell, whose mean then carries the lattice's
+    // rounding. 16 is the smallest tempering at which the bundled real log's E(sigma) reaches
+    // that rounding, cell sqrt(2/12) (41 mm at 10 cm), in both arithmetics (docs/results.md).
+    int tempering = 16;
+    double max_range = 30.0;  // readings at or past this are not used (m)
+  } beam;
+
   // Spread of the motion model: sigma_xy = xy0 + xy_per_m |translation| + xy_per_rad |rotation|,
   // sigma_theta = theta0 + theta_per_m |translation| + theta_per_rad |rotation|.
-  double motion_xy0 = 0.01;
-  double motion_xy_per_m = 0.1;
-  double motion_xy_per_rad = 0.05;
-  double motion_theta0 = 0.002;
-  double motion_theta_per_m = 0.02;
-  double motion_theta_per_rad = 0.1;
-  int seps_bits = 8;     // map index width
-  int seps_levels = 16;  // eps such that one reading's strongest occupied index is this
-  // A reading's empty indices are divided by this (rounded away from 0): many beams cross a wall
-  // cell near its edge, but few end in it, so full-strength empty evidence erases walls.
-  int empty_divisor = 1;
-  int ugamma_bits = 16;
-  int ugamma_steps_per_halving = 16;
-  double map_margin = 10.0;  // metres of map beyond the odometry's reach plus max_range
+  struct MotionModel {
+    double xy0 = 0.01;
+    double xy_per_m = 0.1;
+    double xy_per_rad = 0.05;
+    double theta0 = 0.002;
+    double theta_per_m = 0.02;
+    double theta_per_rad = 0.1;
+  } motion;
+
+  // The pose grid Pi: a window of hypotheses around the predicted pose.
+  struct PoseWindow {
+    int cells = 11;  // cells per side in x and y (odd)
+    // Heading bins (odd): +-10.5 degrees at 1024, as the odometry's heading can miss by several
+    // degrees in one scan and the motion model reaches only 3 sigma from its mean.
+    int headings = 61;
+    double pose_cutoff = 0.01;  // mapping skips poses less probable than this
+    // A localization drops the poses it leaves less probable than this, so that the next one
+    // weighs the poses the motion model carries the rest to, not the whole window. Low, as the
+    // far tail is what recovers from an odometry glitch: at 1e-20 the real log's double run
+    // already changes (docs/results.md).
+    double pose_prune = 1e-40;
+  } window;
+
+  // The map M: an S_eps grid in both arithmetics.
+  struct Map {
+    int seps_bits = 8;     // index width
+    int seps_levels = 16;  // eps such that one reading's strongest occupied index is this
+    // A reading's empty indices are divided by this (rounded away from 0): many beams cross a
+    // wall cell near its edge, but few end in it, so full-strength empty evidence erases walls.
+    int empty_divisor = 1;
+    double margin = 10.0;  // metres of map beyond the odometry's reach plus max_range
+  } map;
+
+  // The pose grid's probabilities in the integer arithmetic: U_gamma indices.
+  struct UGammaOptions {
+    int bits = 16;
+    int steps_per_halving = 16;
+  } ugamma;
 };
 
-// Throws std::invalid_argument naming the offending field.
+// Throws std::invalid_argument naming the offending field by its path (`window.cells`).
 void check_slam_config(const SlamConfig& config);
 
 // The scan geometry, fixed for a run, in integer units.
@@ -78,9 +103,10 @@ struct SlamSensor {
   std::int32_t mount_theta = 0;  // angle units
 };
 
-// One scan's inputs: ranges in mm (0: no usable return) and the odometry increment since the
-// previous scan in the previous robot frame.
-struct SlamScan {
+// One scan's inputs to the per-scan path: ranges in mm (0: no usable return) and the odometry
+// increment since the previous scan in the previous robot frame. Made from a core::Scan by
+// quantize_scan (scan_slam.hpp), the one place where SI units become the path's integers.
+struct QuantizedScan {
   std::vector<std::int32_t> range_mm;
   std::int32_t odom_dx_mm = 0;
   std::int32_t odom_dy_mm = 0;
@@ -145,8 +171,9 @@ class GridSlam {
   // One scan: the motion update, then localization and mapping when the schedule says so. A
   // scan without any usable reading only moves the pose grid. Throws std::runtime_error if the
   // pose window reaches the map's edge.
-  void process(const SlamScan& scan);
+  void process(const QuantizedScan& scan);
 
+  const SlamSetup& setup() const { return setup_; }
   SlamEstimate estimate() const { return estimate_; }
   const core::Grid<std::int8_t>& map() const { return map_; }
   std::size_t scans() const { return scans_; }
@@ -179,10 +206,10 @@ class GridSlam {
   std::int64_t map_index(int cx, int cy) const;
   void check_window_inside_map() const;
 
-  void motion_update(const SlamScan& scan);
-  void localize(const SlamScan& scan);
-  void map_scan(const SlamScan& scan);
-  void add_pose_scan(int cx, int cy, std::int32_t angle, const SlamScan& scan);
+  void motion_update(const QuantizedScan& scan);
+  void localize(const QuantizedScan& scan);
+  void map_scan(const QuantizedScan& scan);
+  void add_pose_scan(int cx, int cy, std::int32_t angle, const QuantizedScan& scan);
   void update_estimate();
   void normalize();
 

@@ -36,7 +36,8 @@ struct SlamRun {
 
 // The per-scan path's inputs of every scan of the log: ranges in millimetres, odometry
 // increments from the previous scan's robot pose. Counts readings into run.
-std::vector<SlamScan> quantize_scans(const core::Log& log, const SlamConfig& config, SlamRun& run);
+std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig& config,
+                                          SlamRun& run);
 
 // Throws std::invalid_argument with a clear message for a log SLAM cannot use: no scans, no
 // odometry (no ODOM record and every scan at the same pose), scans whose geometry (beam count,
@@ -47,7 +48,11 @@ void check_slam_log(const core::Log& log);
 SlamRun run_slam(const core::Log& log, const SlamConfig& config, core::Arithmetic arithmetic,
                  const core::Progress& progress = {});
 
-// The map's probabilities on an axis-aligned grid of the log's frame (nearest cell).
+// The map's probabilities on an axis-aligned grid of the log's frame (nearest cell): the part any
+// scan reached and 10 cells around it. `frame` is the SLAM frame in the log's frame.
+core::ProbabilityGrid slam_map_probabilities(const core::Grid<std::int8_t>& map,
+                                             const core::SepsCodec& codec,
+                                             const core::Pose2& frame);
 core::ProbabilityGrid slam_map_probabilities(const SlamRun& run);
 
 }  // namespace intgrid::slam
