@@ -1,7 +1,7 @@
 // Synthesizable C++ of the sectoral ISM kernel (docs/hardware.md, kernel 2): the S_eps index of
 // every polar cell for one reading, bit for bit golden's ism_kernel_indices
-// (golden/ism_kernel.hpp). The same operations in the same order as golden's
-// sectoral_ism_rings with KernelLogArith: per ring, the class densities, then for each
+// (golden/kernel/include/intgrid/kernel/ism_kernel.hpp). The same operations in the same order as
+// golden's sectoral_ism_rings with KernelLogArith: per ring, the class densities, then for each
 // condition v the sum over the classes in ascending order times the ring prior; the suffix
 // sums over the rings downward; the prefix sums upward with the (ring, sector) outputs.
 //

@@ -1,6 +1,6 @@
 // The per-reading set-up of the sectoral ISM: golden's sectoral_ism_rings (docs/algorithms.md 3)
-// with the integer arithmetic of golden/ism_kernel.cpp, on one log-add unit, for the rings
-// inside the window (|z - d_r| < WINDOW cells; every other ring's terms are log 0 and its
+// with the integer arithmetic of golden/kernel/src/ism_kernel.cpp, on one log-add unit, for the
+// rings inside the window (|z - d_r| < WINDOW cells; every other ring's terms are log 0 and its
 // indices are constants the streamer supplies), writing the index of every (ring, sector)
 // of the window into the index RAM.
 //

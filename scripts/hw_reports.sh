@@ -765,8 +765,9 @@ w("- Simulation: the Verilator testbenches' report programs in build/full (INTGR
   "checks." % seed)
 w("- Yosys: every file of rtl/ read with `read_verilog -sv`, the configuration set with "
   "`chparam` (index fusion, the adder) or the `sectoral_ism_<config>.ys` that "
-  "testbench/ism_kernel_export writes into build/full/testbench/sectoral_ism with the ROM "
-  "files; then `synth_ice40 -top <top>` and `stat`, and separately `synth -flatten -top <top>` "
+  "ism_kernel_export (testbench/ism_kernel_export.cpp; the text is golden's ism_table_files, "
+  "golden/kernel/src/table_export.cpp) writes into build/full/testbench/sectoral_ism with the "
+  "ROM files; then `synth_ice40 -top <top>` and `stat`, and separately `synth -flatten -top <top>` "
   "and `stat`.")
 w("- nextpnr: `%s`; Fmax is the last \"Max frequency for clock\" line of its log. The design is "
   "the kernel with every input and output registered (harness written by the script into its "

@@ -507,7 +507,7 @@ slam::SlamConfig default_sweep_config() {
   // measures the cost of the grid (figure 3.14), not of the poses the motion model reaches.
   c.window.pose_prune = 0.0;
   // The simulated floor's readings are independent given the map, so its beams need little
-  // tempering: at the real log's 16 its ATE doubles (README).
+  // tempering: at the real log's 16 its ATE doubles (docs/results.md).
   c.beam.tempering = 3;
   return c;
 }
@@ -607,22 +607,22 @@ void run_slam_sweeps(const SlamSweepOptions& o) {
 void add_slam_sweeps_figure(CLI::App& figure) {
   auto o = std::make_shared<SlamSweepOptions>();
   CLI::App* cmd = figure.add_subcommand(
-      "slam-sweeps",
-      "thesis 3.6: E(sigma), E(d), ATE and run time of integer and double SLAM against lambda, xi "
-      "and the pose grid's size, on a simulated floor with 10 cm cells; CSVs, gnuplot plots, "
-      "maps");
+      "slam-sweeps", "thesis 3.6: the SLAM against lambda, xi and the pose grid's size");
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->add_option("--seed", o->seed, "seed of the floor, trajectory and noise")
+      ->transform(seed_number())
       ->capture_default_str();
   cmd->add_option("--scans", o->scans,
                   io::printed("scans of the simulated run (default %zu, %zu with --quick)",
                               kSlamSweepScans, kSlamSweepQuickScans))
-      ->check(CLI::Range(std::size_t{2}, std::size_t{100000}));
+      ->transform(whole_range(2, 100000));
   cmd->add_flag("--quick", o->quick, "few scans and sweep points (for tests)");
   cmd->add_option("--gnuplot", o->gnuplot, "the gnuplot program")->capture_default_str();
   add_slam_options(*cmd, o->config);
   cmd->footer(
-      "The SLAM options set every run but what a sweep varies: --lambda is the xi sweep's, --xi "
+      "E(sigma), E(d), ATE and run time of integer and double SLAM on a simulated floor with 10 cm "
+      "cells; CSVs, gnuplot plots, maps. The SLAM options set every run but what a sweep varies: "
+      "--lambda is the xi sweep's, --xi "
       "the lambda sweep's, --window-cells and --window-headings both's (the size sweep sets them "
       "equal, 3 to 33). Defaults for 10 cm cells: 256 headings a turn (1.4 degrees, a cell at 4 "
       "m).");

@@ -113,7 +113,7 @@ def test_map_from_scans_writes_what_intgrid_map_writes(bundled_maps, data_dir, t
     if not cli or not pathlib.Path(cli).exists():
         pytest.skip("the intgrid command is not built (INTGRID_CLI)")
     log = data_dir / "malaga_telecom_loop_reference.log"
-    subprocess.run([cli, "map", "--log", str(log), "--out", str(tmp_path / "cli"), "--res", "0.05"],
+    subprocess.run([cli, "map", "--log", str(log), "--out", str(tmp_path / "cli"), "--cell", "0.05"],
                    check=True, capture_output=True)
     (grid, geometry), _ = bundled_maps
     (tmp_path / "py").mkdir()

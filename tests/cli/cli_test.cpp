@@ -530,9 +530,12 @@ TEST_F(Cli, SlamRejectsEmptyMalformedAndOdometryFreeLogs) {
       out);
   EXPECT_EQ(r.status, 2);
   expect_error(r, "no odometry");
-  r = run("slam --log " + write("s.log", kSlamLog).string() + out + " --res 0.0125");
-  EXPECT_NE(r.status, 0);
-  expect_error(r, "cell");
+  r = run("slam --log " + write("s.log", kSlamLog).string() + out + " --cell 0.0125");
+  EXPECT_EQ(r.status, 2);
+  expect_error(r, "--cell: must be a whole number of millimetres");
+  r = run("slam --log " + write("s.log", kSlamLog).string() + out + " --window-cells 10");
+  EXPECT_EQ(r.status, 2);
+  expect_error(r, "--window-cells: must be odd");
   EXPECT_FALSE(fs::exists(dir_ / "out" / "map.yaml"));
 }
 

@@ -35,7 +35,7 @@ message(STATUS "consumer: ${run_output}")
 # The installed command, moved away from the build tree, finds its data beside itself.
 file(RENAME ${prefix} ${WORK_DIR}/moved)
 run(${WORK_DIR}/moved/bin/intgrid map --log ${WORK_DIR}/moved/share/intgrid/data/malaga_telecom_loop_reference.log
-    --out ${WORK_DIR}/map --res 0.2)
+    --out ${WORK_DIR}/map --cell 0.2)
 if(NOT EXISTS ${WORK_DIR}/map/map.yaml)
   message(FATAL_ERROR "the moved command wrote no map")
 endif()

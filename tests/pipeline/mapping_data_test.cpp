@@ -40,7 +40,7 @@ TEST(MappingData, IntegerMapAgreesWithTheBundledMap) {
   const MapAgreement a =
       compare_occupied(ours.probabilities, 0.65, reference.grid, reference.occupied_thresh,
                        2.0 * reference.grid.geometry.resolution);
-  // Measured 91.9% and 78.9% (README); floors a little below.
+  // Measured 91.9% and 78.9% (docs/results.md); floors a little below.
   EXPECT_GE(a.ours_near_reference, 0.90);
   EXPECT_GE(a.reference_near_ours, 0.75);
   EXPECT_GT(a.ours_occupied, 5000u);

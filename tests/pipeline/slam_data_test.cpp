@@ -1,6 +1,6 @@
 // The bundled real log through the SLAM end to end, scored against the reference trajectory
 // (data/README.md). The target is ATE <= 0.20 m; what the default settings reach is in
-// the README.
+// docs/results.md.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -18,10 +18,6 @@ std::string scan_name(const core::Log& log, std::size_t i) {
   return scan_label(i + 1, log.scans[i].t);
 }
 
-bool same_pose(const core::Pose2& a, const core::Pose2& b) {
-  return a.x == b.x && a.y == b.y && a.theta == b.theta;
-}
-
 }  // namespace
 
 double SlamRun::mean_sigma() const {
@@ -37,7 +33,7 @@ void check_slam_log(const core::Log& log) {
   bool moves = !log.odometry.empty();
   for (std::size_t i = 1; i < log.scans.size(); ++i) {
     const core::Scan& s = log.scans[i];
-    moves = moves || !same_pose(s.robot, first.robot);
+    moves = moves || s.robot != first.robot;
     if (const char* differs = geometry_difference(s, first))
       core::fail<std::invalid_argument>(scan_name(log, i) + " has another " + differs +
                                         " than the first scan; SLAM needs one sensor geometry");

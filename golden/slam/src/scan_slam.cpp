@@ -17,10 +17,6 @@ namespace {
 
 constexpr double kUnitRadians = 2.0 * std::numbers::pi / core::kAngleUnitsPerTurn;
 
-bool same_pose(const core::Pose2& a, const core::Pose2& b) {
-  return a.x == b.x && a.y == b.y && a.theta == b.theta;
-}
-
 }  // namespace
 
 std::string scan_label(std::size_t number, double t) {
@@ -33,7 +29,7 @@ const char* geometry_difference(const core::Scan& b, const core::Scan& a) {
   return b.ranges.size() != a.ranges.size()             ? "beam count"
          : b.angle0 != a.angle0 || b.dangle != a.dangle ? "bearings"
          : b.max_range != a.max_range                   ? "maximum range"
-         : !same_pose(b.sensor_mount, a.sensor_mount)   ? "sensor mount"
+         : b.sensor_mount != a.sensor_mount             ? "sensor mount"
                                                         : nullptr;
 }
 

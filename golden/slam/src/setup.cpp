@@ -15,7 +15,7 @@ namespace intgrid::slam {
 namespace {
 
 void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) core::fail<std::invalid_argument>("SLAM setting " + field + " " + what);
+  if (!ok) core::fail<std::invalid_argument>(field + " " + what);
 }
 
 std::int32_t angle_units(double radians) {

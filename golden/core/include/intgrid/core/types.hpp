@@ -15,6 +15,8 @@ struct Pose2 {
   double x = 0.0;
   double y = 0.0;
   double theta = 0.0;
+
+  bool operator==(const Pose2&) const = default;  // the same three numbers
 };
 
 // An angle wrapped to (-pi, pi].

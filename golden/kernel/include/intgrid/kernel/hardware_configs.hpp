@@ -1,7 +1,7 @@
 // The named hardware configurations of the sectoral ISM kernel (docs/hardware.md, kernel 2) and
 // the word widths and schedule constants the hardware layers derive from golden's tables.
-// Shared by the table generator (ism_kernel_export) and the testbenches, so that both build
-// exactly the same golden kernel for a name.
+// Shared by the table generator (table_export.hpp, written out by testbench/ism_kernel_export)
+// and the testbenches, so that both build exactly the same golden kernel for a name.
 #pragma once
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // The bit-accurate integer model of the sectoral ISM hardware kernel (docs/hardware.md,
 // kernel 2): it defines the exact bits the HLS, SystemC and RTL layers must produce.
 //
-// The kernel runs the ring recursion of golden/sectoral_ism.hpp in base-2 logarithms
+// The kernel runs the ring recursion of intgrid/core/sectoral_ism.hpp in base-2 logarithms
 // held as 32-bit fixed-point integers, so that the huge range of 2^-M_r never leaves
 // the word: products are additions, the 2^-n priors are integer offsets (the log-domain
 // form of a shift), sums take one ROM lookup (log2(1 + 2^-d)), and the last step
