@@ -1,4 +1,5 @@
-// Unit tests of U_gamma (golden/ugamma.hpp, docs/algorithms.md 5) with long double as the oracle.
+// Unit tests of U_gamma (intgrid/core/ugamma.hpp, docs/algorithms.md 5) with long double as the
+// oracle.
 //
 // Error bounds, in index steps. One step is a factor gamma = 2^(-1/steps_per_halving), so an
 // error of e steps is a relative error of about e ln 2 / steps_per_halving.

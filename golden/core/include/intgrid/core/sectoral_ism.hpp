@@ -1,7 +1,7 @@
 // The exact Bayesian inverse sensor model of a large-FOV nearest-target sensor over its
 // local polar grid, with sectoral decomposition (thesis 2.5, docs/algorithms.md 3), in linear
 // time. The ring recursion is written once, for any log-domain arithmetic: double here,
-// the bit-accurate integer kernel in golden/ism_kernel.hpp.
+// the bit-accurate integer kernel in intgrid/kernel/ism_kernel.hpp.
 #pragma once
 
 #include <cstddef>

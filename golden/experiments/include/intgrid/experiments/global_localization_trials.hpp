@@ -3,9 +3,9 @@
 // contamination and unmodelled obstacles the map lacks), and the errors of an estimate of that
 // pose. A pure library: the caller runs the localizers, counts successes and writes the results.
 //
-// Determinism: every random number comes from the simulator's SimRandom (golden/simulator.hpp),
-// the true pose from the generator the caller passes, the obstacles and the readings from two
-// streams derived from the trial's seed.
+// Determinism: every random number comes from the simulator's SimRandom
+// (intgrid/simulation/simulator.hpp), the true pose from the generator the caller passes, the
+// obstacles and the readings from two streams derived from the trial's seed.
 #pragma once
 
 #include <cstddef>
