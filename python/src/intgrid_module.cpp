@@ -999,17 +999,6 @@ py::tuple grid_tuple(const core::ProbabilityGrid& grid) {
   return py::make_tuple(to_numpy(grid), grid.geometry);
 }
 
-// The farthest any scan's robot pose lies from the first's (m): the reach ScanSlam sizes its map
-// for, as run_slam computes it.
-double odometry_reach(const std::vector<core::Scan>& scans) {
-  double reach = 0.0;
-  if (scans.empty()) return reach;
-  const core::Pose2 first = scans.front().robot;
-  for (const core::Scan& s : scans)
-    reach = std::max(reach, std::hypot(s.robot.x - first.x, s.robot.y - first.y));
-  return reach;
-}
-
 void bind_slam(py::module_& m) {
   using slam::SlamConfig;
   py::class_<SlamConfig> config(m, "SlamConfig",
@@ -1076,9 +1065,11 @@ void bind_slam(py::module_& m) {
       .def_readwrite("ugamma", &SlamConfig::ugamma)
       .def("check", &slam::check_slam_config, "Raises ValueError naming a bad field.");
 
-  m.def("odometry_reach", &odometry_reach,
-        "The farthest robot pose of the scans from the first one's (m): the reach_m of run_slam.",
-        "scans"_a);
+  m.def(
+      "odometry_reach",
+      [](const std::vector<core::Scan>& scans) { return slam::odometry_reach(scans); },
+      "The farthest robot pose of the scans from the first one's (m): the reach_m of run_slam.",
+      "scans"_a);
 
   using slam::ScanSlam;
   py::class_<ScanSlam>(m, "ScanSlam",

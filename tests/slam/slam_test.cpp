@@ -1392,9 +1392,7 @@ void expect_scan_slam_is_the_per_scan_path(Arithmetic arithmetic) {
   const Log& log = loop_log().log;
   const SlamConfig config = loop_config();
   const Pose2 first = log.scans.front().robot;
-  double reach = 0.0;
-  for (const Scan& s : log.scans)
-    reach = std::max(reach, std::hypot(s.robot.x - first.x, s.robot.y - first.y));
+  const double reach = odometry_reach(log.scans);
   const SlamSetup setup = make_slam_setup(config, log.scans.front(), reach);
   GridSlam<Pr> by_hand(setup, make_probabilities<Pr>(setup));
   ScanSlam online(config, arithmetic, log.scans.front(), reach);

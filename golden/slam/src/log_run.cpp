@@ -53,15 +53,20 @@ std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig
   return out;
 }
 
+double odometry_reach(std::span<const core::Scan> scans) {
+  double reach = 0.0;
+  if (scans.empty()) return reach;
+  const core::Pose2 first = scans.front().robot;
+  for (const core::Scan& s : scans)
+    reach = std::max(reach, std::hypot(s.robot.x - first.x, s.robot.y - first.y));
+  return reach;
+}
+
 SlamRun run_slam(const core::Log& log, const SlamConfig& config, core::Arithmetic arithmetic,
                  const core::Progress& progress) {
   check_slam_config(config);
   check_slam_log(log);
-  const core::Pose2 first = log.scans.front().robot;
-  double reach = 0.0;
-  for (const core::Scan& s : log.scans)
-    reach = std::max(reach, std::hypot(s.robot.x - first.x, s.robot.y - first.y));
-  ScanSlam slam(config, arithmetic, log.scans.front(), reach);
+  ScanSlam slam(config, arithmetic, log.scans.front(), odometry_reach(log.scans));
   SlamRun run;
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
     slam.insert(log.scans[i]);

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "intgrid/core/grid.hpp"
@@ -43,6 +44,10 @@ std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig
 // odometry (no ODOM record and every scan at the same pose), scans whose geometry (beam count,
 // bearings, range limit or sensor mount) differs from the first's.
 void check_slam_log(const core::Log& log);
+
+// The farthest any scan's robot pose lies from the first scan's (m), 0 without scans: the reach
+// run_slam sizes its map for (ScanSlam's reach_m).
+double odometry_reach(std::span<const core::Scan> scans);
 
 // Runs the whole log. progress(done, total) after each scan.
 SlamRun run_slam(const core::Log& log, const SlamConfig& config, core::Arithmetic arithmetic,
