@@ -8,7 +8,7 @@ group="${1:-host}"
 packages=(
   build-essential cmake pkg-config
   libgtest-dev libgmock-dev
-  libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev
+  libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev libeigen3-dev
   gnuplot-nox
 )
 case "$group" in

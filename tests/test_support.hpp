@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -17,6 +18,21 @@
 namespace intgrid::test {
 
 namespace fs = std::filesystem;
+
+// The Freiburg benchmark logs (not bundled): INTGRID_BENCHMARK_DIR, else ../shared/data/benchmark
+// beside the checkout.
+inline fs::path benchmark_dir() {
+  const char* dir = std::getenv("INTGRID_BENCHMARK_DIR");
+  return dir != nullptr && *dir != '\0'
+             ? fs::path(dir)
+             : fs::path(INTGRID_DATA_DIR) / "../../shared/data/benchmark";
+}
+
+// The message of a benchmark test that cannot run.
+inline std::string absent(const fs::path& file) {
+  return file.string() + " is absent: set INTGRID_BENCHMARK_DIR to the folder holding the " +
+         "Freiburg benchmark's intel.clf and aces.clf (and their .relations)";
+}
 
 // A fresh directory under the system temporary directory, removed with its content at scope exit.
 class TempDir {

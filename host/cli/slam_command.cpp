@@ -1,6 +1,12 @@
-// `intgrid slam`: the event-driven integer grid SLAM on a log.
+// `intgrid slam`: SLAM on a log, by the submap SLAM with loop closure (--engine submaps, the
+// default) or the thesis's event-driven grid SLAM (--engine grid).
+#include <algorithm>
+#include <cstddef>
 #include <cstdio>
+#include <functional>
 #include <memory>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include "cli/commands.hpp"
@@ -30,6 +36,51 @@ const FieldFlags& slam_flags() {
 
 void check_slam_options(const slam::SlamConfig& c) {
   naming_flags(slam_flags(), [&] { slam::check_slam_config(c); });
+}
+
+const FieldFlags& graph_slam_flags() {
+  static const FieldFlags flags = {
+      {"cell", "--cell"},
+      {"headings", "--headings"},
+      {"sensor.sigma", "--sigma"},
+      {"sensor.max_range", "--max-range"},
+      {"map.seps_bits", "--bits"},
+      {"map.seps_levels", "--levels"},
+      {"map.empty_divisor", "--empty-divisor"},
+      {"submaps.scans", "--submap-scans"},
+      {"filter.distance", "--filter-distance"},
+      {"filter.degrees", "--filter-degrees"},
+      {"filter.seconds", "--filter-seconds"},
+      {"tracking.window", "--tracking-window"},
+      {"tracking.window_degrees", "--tracking-degrees"},
+      {"tracking.wide_below", "--wide-below"},
+      {"tracking.wide_window", "--wide-window"},
+      {"tracking.wide_degrees", "--wide-degrees"},
+      {"tracking.prior_xy", "--prior-xy"},
+      {"tracking.prior_xy_per_m", "--prior-xy-per-m"},
+      {"tracking.prior_degrees", "--prior-degrees"},
+      {"tracking.prior_degrees_per_degree", "--prior-degrees-per-degree"},
+      {"tracking.min_hits", "--min-hits"},
+      {"loops.every", "--loop-every"},
+      {"loops.max_distance", "--loop-distance"},
+      {"loops.submaps", "--loop-submaps"},
+      {"loops.window", "--loop-window"},
+      {"loops.window_degrees", "--loop-degrees"},
+      {"loops.min_score", "--loop-min-score"},
+      {"loops.sigma_xy", "--loop-sigma-xy"},
+      {"loops.sigma_degrees", "--loop-sigma-degrees"},
+      {"graph.local_sigma_xy", "--local-sigma-xy"},
+      {"graph.local_sigma_degrees", "--local-sigma-degrees"},
+      {"graph.odometry_sigma_xy", "--odometry-sigma-xy"},
+      {"graph.odometry_sigma_degrees", "--odometry-sigma-degrees"},
+      {"graph.optimize_every", "--optimize-every"},
+      {"graph.iterations", "--graph-iterations"},
+      {"graph.huber", "--huber"}};
+  return flags;
+}
+
+void check_graph_slam_options(const slam::GraphSlamConfig& c) {
+  naming_flags(graph_slam_flags(), [&] { slam::check_graph_slam_config(c); });
 }
 
 void add_slam_options(CLI::App& cmd, slam::SlamConfig& c) {
@@ -98,21 +149,188 @@ void add_slam_options(CLI::App& cmd, slam::SlamConfig& c) {
       ->capture_default_str();
 }
 
+namespace {
+
+// The settings of the grid engine's options (add_slam_options) that the submaps engine has too,
+// with the same meaning and its own default: the option sets the grid engine's field, which
+// `to_submaps` copies to the submaps engine's when that runs.
+struct SharedSetting {
+  const char* flag;
+  const char* help;  // for both engines
+  std::string submaps_default;
+  std::function<void(SlamJobOptions&)> to_submaps;
+};
+
+std::vector<SharedSetting> shared_settings() {
+  const slam::GraphSlamConfig s;
+  return {
+      {"--cell", "map cell (m, whole millimetres; the grid engine's pose-grid step too)",
+       option_number(s.cell), [](SlamJobOptions& o) { o.submap_config.cell = o.grid_config.cell; }},
+      {"--headings", "heading steps per turn (a power of two)", std::to_string(s.headings),
+       [](SlamJobOptions& o) { o.submap_config.headings = o.grid_config.headings; }},
+      {"--sigma", "range noise of the beam model (m)", option_number(s.sensor.sigma),
+       [](SlamJobOptions& o) { o.submap_config.sensor.sigma = o.grid_config.beam.sigma; }},
+      {"--max-range", "readings at or past this are not used (m)",
+       option_number(s.sensor.max_range),
+       [](SlamJobOptions& o) { o.submap_config.sensor.max_range = o.grid_config.beam.max_range; }},
+      {"--empty-divisor", "a reading's empty evidence is divided by this before it is fused",
+       std::to_string(s.map.empty_divisor), [](SlamJobOptions& o) {
+         o.submap_config.map.empty_divisor = o.grid_config.map.empty_divisor;
+       }}};
+}
+
+const char* const kBothGroup = "Both engines (each with its own default)";
+const char* const kGridGroup = "The grid engine (--engine grid)";
+
+// The submaps engine's own options, grouped by concern; returns them.
+std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::GraphSlamConfig& c) {
+  std::vector<CLI::Option*> added;
+  std::string group;
+  const auto add = [&](const std::string& name, auto& field, const std::string& help,
+                       const CLI::Validator& validator) {
+    CLI::Option* opt = cmd.add_option(name, field, help)->capture_default_str()->group(group);
+    if constexpr (std::is_integral_v<std::remove_reference_t<decltype(field)>>)
+      opt->transform(validator);
+    else
+      opt->check(validator);
+    added.push_back(opt);
+  };
+  group = "Submaps engine: the submaps' S_eps grids";
+  add("--submap-scans", c.submaps.scans,
+      "nodes a submap takes before the next starts (each ends with twice as many)",
+      whole_at_least(1));
+  add("--bits,--seps-bits", c.map.seps_bits, "S_eps index width of the submaps' cells",
+      whole_at_least(1));
+  add("--levels,--seps-levels", c.map.seps_levels, "one reading's strongest occupied index",
+      whole_at_least(1));
+  group = "Submaps engine: motion filter (a scan becomes a node once the pose moved this far)";
+  add("--filter-distance", c.filter.distance, "metres since the last node", non_negative());
+  add("--filter-degrees", c.filter.degrees, "degrees since the last node", non_negative());
+  add("--filter-seconds", c.filter.seconds, "seconds since the last node", non_negative());
+  group = "Submaps engine: tracking (every scan matched against its submap)";
+  add("--tracking-window", c.tracking.window, "translations searched: +- this (m)", non_negative());
+  add("--tracking-degrees", c.tracking.window_degrees, "headings searched: +- this (degrees)",
+      non_negative());
+  add("--wide-below", c.tracking.wide_below,
+      "a match scoring under this fraction of the best possible is searched again in the wide "
+      "window",
+      probability());
+  add("--wide-window", c.tracking.wide_window, "the wide window's translations: +- this (m)",
+      non_negative());
+  add("--wide-degrees", c.tracking.wide_degrees, "the wide window's headings: +- this (degrees)",
+      non_negative());
+  add("--prior-xy", c.tracking.prior_xy,
+      "moving this far from the odometry costs the full score (m; 0: no prior)", non_negative());
+  add("--prior-xy-per-m", c.tracking.prior_xy_per_m,
+      "--prior-xy grows by this many metres per metre of odometry translation", non_negative());
+  add("--prior-degrees", c.tracking.prior_degrees,
+      "turning this far from the odometry costs the full score (degrees; 0: no prior)",
+      non_negative());
+  add("--prior-degrees-per-degree", c.tracking.prior_degrees_per_degree,
+      "--prior-degrees grows by this many degrees per degree of odometry rotation", non_negative());
+  add("--min-hits", c.tracking.min_hits, "scans with fewer hits follow the odometry",
+      whole_at_least(1));
+  group = "Submaps engine: loop closure (nodes matched against finished submaps)";
+  add("--loop-every", c.loops.every, "a search every this many nodes", whole_at_least(1));
+  add("--loop-distance", c.loops.max_distance,
+      "submaps whose middle node lies this near the node's estimate are candidates (m)",
+      non_negative());
+  add("--loop-submaps", c.loops.submaps, "of the candidates, the nearest this many are searched",
+      whole_at_least(1));
+  add("--loop-window", c.loops.window, "translations searched: +- this around the estimate (m)",
+      non_negative());
+  add("--loop-degrees", c.loops.window_degrees, "headings searched: +- this (degrees)",
+      non_negative());
+  add("--loop-min-score", c.loops.min_score,
+      "a closure scores at least this fraction of the best possible", real_range(0, 1, true));
+  add("--loop-sigma-xy", c.loops.sigma_xy, "a closure's spread in the graph (m)", positive());
+  add("--loop-sigma-degrees", c.loops.sigma_degrees, "a closure's spread in the graph (degrees)",
+      positive());
+  group = "Submaps engine: pose graph";
+  add("--local-sigma-xy", c.graph.local_sigma_xy, "a node's spread in its submaps (m)", positive());
+  add("--local-sigma-degrees", c.graph.local_sigma_degrees,
+      "a node's spread in its submaps (degrees)", positive());
+  add("--odometry-sigma-xy", c.graph.odometry_sigma_xy, "one node to the next: spread (m)",
+      positive());
+  add("--odometry-sigma-degrees", c.graph.odometry_sigma_degrees,
+      "one node to the next: spread (degrees)", positive());
+  add("--optimize-every", c.graph.optimize_every,
+      "nodes between optimizations that have new loop closures", whole_at_least(1));
+  add("--graph-iterations", c.graph.iterations, "iterations of an optimization", whole_at_least(1));
+  add("--huber", c.graph.huber, "the robust loss's Huber width (sigmas)", positive());
+  return added;
+}
+
+// OptionError for the first option of `others` that was given: it belongs to the other engine.
+void refuse_other_engine(const std::vector<CLI::Option*>& others, const char* other,
+                         const SlamJobOptions& o, bool engine_given) {
+  for (const CLI::Option* opt : others)
+    if (opt->count() > 0)
+      bad_option(opt->get_name(), std::string("a setting of --engine ") + other +
+                                      ", not of --engine " + engine_name(o.engine) +
+                                      (engine_given ? "" : " (the default)"));
+}
+
+}  // namespace
+
 void add_slam_command(CLI::App& app) {
   auto o = std::make_shared<SlamJobOptions>();
-  CLI::App* cmd = app.add_subcommand("slam", "event-driven grid SLAM on a log (thesis chapter 3)");
+  CLI::App* cmd = app.add_subcommand(
+      "slam", "SLAM on a log: submaps with loop closure, or the event-driven grid SLAM");
   cmd->add_option("--log", o->log, "log file (project format or CARMEN)")->required();
   cmd->add_option("--out", o->out,
                   "output folder: trajectory.txt, map.yaml, map.pgm, map.png, metrics.json")
       ->required();
   cmd->add_option("--reference", o->reference,
                   "reference log: adds the trajectory error (ATE) to metrics.json");
-  add_arithmetic_option(*cmd, o->arithmetic, "int: U_gamma and S_eps indices; float: double")
+  cmd->add_option("--relations", o->relations,
+                  "benchmark relations file (t1 t2 x y z roll pitch yaw a line): scores the SLAM "
+                  "and the raw odometry, in metrics.json and one line each on stderr");
+  cmd->add_option("--tum", o->tum, "also write the SLAM trajectory here in the TUM format");
+  add_arithmetic_option(*cmd, o->arithmetic,
+                        "int: S_eps indices (and the grid engine's U_gamma); float: double")
       ->default_str("int");
-  add_slam_options(*cmd, o->config);
-  cmd->callback([o] {
+  CLI::Option* engine =
+      add_choice_option(*cmd, "--engine", o->engine,
+                        {{"submaps", SlamEngine::submaps}, {"grid", SlamEngine::grid}},
+                        "submaps: submap SLAM with loop closure; grid: the event-driven grid "
+                        "SLAM (thesis chapter 3)")
+          ->default_str(engine_name(o->engine));
+
+  const std::size_t before = cmd->get_options().size();
+  add_slam_options(*cmd, o->grid_config);
+  std::vector<CLI::Option*> grid_only = cmd->get_options();
+  grid_only.erase(grid_only.begin(), grid_only.begin() + static_cast<std::ptrdiff_t>(before));
+  auto shared = std::make_shared<std::vector<SharedSetting>>(shared_settings());
+  for (const SharedSetting& s : *shared) {
+    CLI::Option* opt = cmd->get_option(s.flag);
+    opt->description(std::string(s.help) + " (default: submaps " + s.submaps_default + ", grid " +
+                     opt->get_default_str() + ")")
+        ->default_str("")
+        ->group(kBothGroup);
+    grid_only.erase(std::find(grid_only.begin(), grid_only.end(), opt));
+  }
+  for (CLI::Option* opt : grid_only) opt->group(kGridGroup);
+  const std::vector<CLI::Option*> submaps_only = add_submap_options(*cmd, o->submap_config);
+
+  cmd->callback([o, cmd, engine, shared, grid_only, submaps_only] {
+    const bool engine_given = engine->count() > 0;
+    if (o->engine == SlamEngine::grid) {
+      refuse_other_engine(submaps_only, "submaps", *o, engine_given);
+    } else {
+      refuse_other_engine(grid_only, "grid", *o, engine_given);
+      for (const SharedSetting& s : *shared)
+        if (cmd->get_option(s.flag)->count() > 0) s.to_submaps(*o);
+    }
     const SlamJobResult r = run_slam_job(*o);
     print_json(r.metrics);
+    // The summaries go to stderr, so that stdout stays one JSON document.
+    std::fprintf(stderr, "slam (%s): %s\n", engine_name(r.engine), slam_summary(r).c_str());
+    if (r.relations) {
+      std::fprintf(stderr, "%s\n", relation_summary("relations", *r.relations).c_str());
+      std::fprintf(stderr, "%s\n",
+                   relation_summary("odometry relations", *r.odometry_relations).c_str());
+    }
   });
 }
 

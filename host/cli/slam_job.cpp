@@ -1,16 +1,23 @@
 #include "cli/slam_job.hpp"
 
+#include <sys/resource.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
+#include "intgrid/figures/figure_layout.hpp"
 #include "intgrid/io/atomic_file.hpp"
 #include "intgrid/io/image_io.hpp"
 #include "intgrid/io/input_error.hpp"
 #include "intgrid/io/log_io.hpp"
 #include "intgrid/io/map_io.hpp"
+#include "intgrid/io/relations_io.hpp"
 #include "intgrid/io/text_io.hpp"
 
 namespace intgrid::cli {
@@ -33,6 +40,82 @@ void write_trajectory(const std::filesystem::path& file,
   });
 }
 
+nlohmann::json relation_json(const slam::RelationError& e) {
+  return {{"matched", e.matched},
+          {"unmatched", e.unmatched},
+          {"trans_mean", e.trans_mean},
+          {"trans_std", e.trans_std},
+          {"rot_mean_deg", e.rot_mean_deg},
+          {"rot_std_deg", e.rot_std_deg},
+          {"trans_sq_mean", e.trans_sq_mean},
+          {"trans_sq_std", e.trans_sq_std},
+          {"rot_sq_mean", e.rot_sq_mean},
+          {"rot_sq_std", e.rot_sq_std}};
+}
+
+// The poses in time order (score_relations needs it; a log's scans normally are).
+std::vector<slam::TimedPose> by_time(std::vector<slam::TimedPose> poses) {
+  std::stable_sort(poses.begin(), poses.end(),
+                   [](const slam::TimedPose& a, const slam::TimedPose& b) { return a.t < b.t; });
+  return poses;
+}
+
+// The peak resident set of this process so far (bytes; Linux reports ru_maxrss in KiB).
+std::size_t peak_memory_bytes() {
+  struct rusage usage {};
+  if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return static_cast<std::size_t>(usage.ru_maxrss) * 1024;
+}
+
+// The submaps engine's settings, nested as GraphSlamConfig is (the fields' paths of
+// check_graph_slam_config), and the map's eps.
+nlohmann::json submap_settings_json(const slam::GraphSlamConfig& c, const core::SepsCodec& codec) {
+  const auto& t = c.tracking;
+  const auto& l = c.loops;
+  const auto& g = c.graph;
+  return {{"cell", c.cell},
+          {"headings", c.headings},
+          {"sensor", {{"sigma", c.sensor.sigma}, {"max_range", c.sensor.max_range}}},
+          {"map",
+           {{"seps_bits", c.map.seps_bits},
+            {"seps_levels", c.map.seps_levels},
+            {"empty_divisor", c.map.empty_divisor}}},
+          {"eps", codec.eps()},
+          {"submaps", {{"scans", c.submaps.scans}}},
+          {"filter",
+           {{"distance", c.filter.distance},
+            {"degrees", c.filter.degrees},
+            {"seconds", c.filter.seconds}}},
+          {"tracking",
+           {{"window", t.window},
+            {"window_degrees", t.window_degrees},
+            {"wide_below", t.wide_below},
+            {"wide_window", t.wide_window},
+            {"wide_degrees", t.wide_degrees},
+            {"prior_xy", t.prior_xy},
+            {"prior_xy_per_m", t.prior_xy_per_m},
+            {"prior_degrees", t.prior_degrees},
+            {"prior_degrees_per_degree", t.prior_degrees_per_degree},
+            {"min_hits", t.min_hits}}},
+          {"loops",
+           {{"every", l.every},
+            {"max_distance", l.max_distance},
+            {"submaps", l.submaps},
+            {"window", l.window},
+            {"window_degrees", l.window_degrees},
+            {"min_score", l.min_score},
+            {"sigma_xy", l.sigma_xy},
+            {"sigma_degrees", l.sigma_degrees}}},
+          {"graph",
+           {{"local_sigma_xy", g.local_sigma_xy},
+            {"local_sigma_degrees", g.local_sigma_degrees},
+            {"odometry_sigma_xy", g.odometry_sigma_xy},
+            {"odometry_sigma_degrees", g.odometry_sigma_degrees},
+            {"optimize_every", g.optimize_every},
+            {"iterations", g.iterations},
+            {"huber", g.huber}}}};
+}
+
 std::vector<core::Pose2> positions(const std::vector<slam::TimedPose>& poses) {
   std::vector<core::Pose2> out;
   for (const slam::TimedPose& p : poses) out.push_back(p.pose);
@@ -41,8 +124,41 @@ std::vector<core::Pose2> positions(const std::vector<slam::TimedPose>& poses) {
 
 }  // namespace
 
+const char* engine_name(SlamEngine engine) {
+  return engine == SlamEngine::grid ? "grid" : "submaps";
+}
+
+std::string slam_summary(const SlamJobResult& r) {
+  std::string line;
+  if (r.ate)
+    line = io::printed("ATE %.3f m (raw odometry %.2f m), ", r.ate->rmse, r.odometry_ate->rmse);
+  if (r.submap_stats) {
+    const slam::GraphSlamStats& s = *r.submap_stats;
+    const auto count = [](std::size_t n, const char* one, const char* many) {
+      return io::printed("%zu %s", n, n == 1 ? one : many);
+    };
+    line += count(s.nodes, "node", "nodes") + " in " + count(s.submaps, "submap", "submaps") +
+            ", " + count(s.loop_closures, "loop closure", "loop closures") +
+            io::printed(" of %zu searched, ", s.loop_searches);
+  } else {
+    line += io::printed("E(sigma) %.1f mm, ", r.run.mean_sigma() * 1e3);
+  }
+  return line + io::printed("%.2f s for %.1f s of data (%.1fx real time)", r.seconds, r.log_seconds,
+                            r.seconds > 0.0 ? r.log_seconds / r.seconds : 0.0);
+}
+
+std::string relation_summary(const std::string& what, const slam::RelationError& e) {
+  return io::printed(
+      "%s: %zu matched, %zu unmatched; translation %.3g ± %.3g m, rotation %.3g ± %.3g deg",
+      what.c_str(), e.matched, e.unmatched, e.trans_mean, e.trans_std, e.rot_mean_deg,
+      e.rot_std_deg);
+}
+
 SlamJobResult run_slam_job(const SlamJobOptions& o) {
-  check_slam_options(o.config);
+  if (o.engine == SlamEngine::grid)
+    check_slam_options(o.grid_config);
+  else
+    check_graph_slam_options(o.submap_config);
   const core::Log log = io::read_log(o.log);
   std::optional<core::Log> reference;
   if (o.reference) reference = io::read_log(*o.reference);
@@ -55,13 +171,36 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     throw io::InputError(*o.reference, 0, "scans", "the reference log has no scans");
 
   SlamJobResult r;
+  r.engine = o.engine;
+  // The relations are read and scored on the raw odometry before SLAM runs: the SLAM trajectory
+  // has the same times (one pose a scan), so a file for another log is refused at once.
+  std::vector<slam::Relation> relations;
+  if (o.relations) {
+    const std::vector<io::RelationRecord> records = io::read_relations(*o.relations);
+    relations = io::relations_of(records);
+    r.odometry_relations = slam::score_relations(by_time(slam::scan_poses(log)), relations);
+    if (r.odometry_relations->matched == 0)
+      throw io::InputError(
+          *o.relations, records.front().line, "t1",
+          io::printed("none of its %zu relations matches a scan of the log %s within %g s (its "
+                      "scans span %s to %s s)",
+                      records.size(), o.log.string().c_str(), slam::kRelationTolerance,
+                      io::format_number(log.scans.front().t).c_str(),
+                      io::format_number(log.scans.back().t).c_str()));
+  }
   const auto start = std::chrono::steady_clock::now();
   {
     TerminalProgress progress(o.arithmetic == core::Arithmetic::integer ? "SLAM (integer)"
                                                                         : "SLAM (double)");
     core::Progress report;
     if (o.progress) report = std::ref(progress);
-    r.run = slam::run_slam(log, o.config, o.arithmetic, report);
+    if (o.engine == SlamEngine::grid) {
+      r.run = slam::run_slam(log, o.grid_config, o.arithmetic, report);
+    } else {
+      slam::GraphSlamStats stats;
+      r.run = slam::run_graph_slam(log, o.submap_config, o.arithmetic, &stats, report);
+      r.submap_stats = stats;
+    }
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.log_seconds = log.scans.back().t - log.scans.front().t;
@@ -74,35 +213,56 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
       throw io::InputError(*o.reference, 0, "t", std::string(e.what()) + " in " + o.log.string());
     }
   }
+  if (o.relations) r.relations = slam::score_relations(by_time(r.run.trajectory), relations);
 
-  const slam::SlamConfig& c = o.config;
   r.metrics = {{"log", o.log.string()},
+               {"engine", engine_name(o.engine)},
                {"arith", o.arithmetic == core::Arithmetic::integer ? "int" : "float"},
                {"scans", r.run.scans},
-               {"skipped_scans", r.run.skipped_scans},
-               {"localizations", r.run.localizations},
-               {"mappings", r.run.mappings},
                {"readings", r.run.readings},
                {"unusable_readings", r.run.unusable_readings},
+               {"reordered_scans", log.reordered_scans},
                {"seconds", r.seconds},
                {"log_seconds", r.log_seconds},
-               {"real_time_factor", r.seconds > 0.0 ? r.log_seconds / r.seconds : 0.0},
-               {"e_sigma_m", r.run.mean_sigma()},
-               {"settings",
-                {{"res", c.cell},
-                 {"lambda", c.schedule.lambda},
-                 {"xi", c.schedule.xi},
-                 {"beams", c.beam.beams},
-                 {"headings", c.headings},
-                 {"window_cells", c.window.cells},
-                 {"window_headings", c.window.headings},
-                 {"sigma", c.beam.sigma},
-                 {"max_range", c.beam.max_range},
-                 {"eps", r.run.codec.eps()}}}};
+               {"real_time_factor", r.seconds > 0.0 ? r.log_seconds / r.seconds : 0.0}};
+  if (r.submap_stats) {
+    const slam::GraphSlamStats& s = *r.submap_stats;
+    r.metrics.update({{"nodes", s.nodes},
+                      {"submaps", s.submaps},
+                      {"wide_searches", s.wide_searches},
+                      {"unmatched_scans", s.unmatched_scans},
+                      {"loop_searches", s.loop_searches},
+                      {"loop_closures", s.loop_closures},
+                      {"optimizations", s.optimizations},
+                      {"peak_pyramid_bytes", s.peak_pyramid_bytes},
+                      {"settings", submap_settings_json(o.submap_config, r.run.codec)}});
+  } else {
+    const slam::SlamConfig& c = o.grid_config;
+    r.metrics.update({{"skipped_scans", r.run.skipped_scans},
+                      {"localizations", r.run.localizations},
+                      {"mappings", r.run.mappings},
+                      {"e_sigma_m", r.run.mean_sigma()},
+                      {"settings",
+                       {{"res", c.cell},
+                        {"lambda", c.schedule.lambda},
+                        {"xi", c.schedule.xi},
+                        {"beams", c.beam.beams},
+                        {"headings", c.headings},
+                        {"window_cells", c.window.cells},
+                        {"window_headings", c.window.headings},
+                        {"sigma", c.beam.sigma},
+                        {"max_range", c.beam.max_range},
+                        {"eps", r.run.codec.eps()}}}});
+  }
   if (r.ate) {
     r.metrics["reference"] = o.reference->string();
     r.metrics["ate"] = error_json(*r.ate);
     r.metrics["odometry_ate"] = error_json(*r.odometry_ate);
+  }
+  if (r.relations) {
+    r.metrics["relations_file"] = o.relations->string();
+    r.metrics["relations"] = relation_json(*r.relations);
+    r.metrics["odometry_relations"] = relation_json(*r.odometry_relations);
   }
 
   std::filesystem::create_directories(o.out);
@@ -115,7 +275,28 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     io::draw_polyline_world(image, map.geometry, positions(slam::scan_poses(*reference)),
                             {30, 160, 30});
   io::draw_polyline_world(image, map.geometry, positions(r.run.trajectory), {220, 30, 30});
-  io::write_png(o.out / "map.png", image);
+  std::vector<std::string> caption = {
+      "Lines: red the SLAM trajectory, grey the raw odometry" +
+          std::string(reference ? ", green the reference" : "") + ".",
+      "Scale: one pixel is one " + io::format_number(map.geometry.resolution * 100.0) +
+          " cm cell (" + io::format_number(1.0 / map.geometry.resolution) + " pixels a metre); " +
+          "north up, the log's frame."};
+  if (r.relations) {
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "Relation error %.3f +- %.3f m, %.2f deg (raw odometry %.3f m, %.2f deg).",
+                  r.relations->trans_mean, r.relations->trans_std, r.relations->rot_mean_deg,
+                  r.odometry_relations->trans_mean, r.odometry_relations->rot_mean_deg);
+    caption.emplace_back(line);
+  }
+  const std::string title =
+      "SLAM map of " + o.log.filename().string() + " (" + engine_name(o.engine) + " engine, " +
+      (o.arithmetic == core::Arithmetic::integer ? "integer" : "double") + ")";
+  io::write_png(o.out / "map.png",
+                figures::compose_figure(title, {{{"occupancy", std::move(image)}}},
+                                        io::ProbabilityScale::grey, caption));
+  if (o.tum) io::write_tum_trajectory(*o.tum, r.run.trajectory);
+  r.metrics["peak_memory_bytes"] = peak_memory_bytes();  // all but metrics.json done
   io::write_file_atomically(o.out / "metrics.json", r.metrics.dump(2) + "\n");
   return r;
 }

@@ -736,10 +736,11 @@ void bind_io(py::module_& m) {
   io_module.def("read_intgrid_log", &io::read_intgrid_log, "path"_a);
   io_module.def(
       "read_carmen_log",
-      [](const std::filesystem::path& file, double max_range) {
+      [](const std::filesystem::path& file, std::optional<double> max_range) {
         return io::read_carmen_log(file, max_range);
       },
-      "path"_a, "max_range"_a = io::kCarmenDefaultMaxRange);
+      "Reads a CARMEN log; max_range None takes the sensor's range from the log.", "path"_a,
+      "max_range"_a = py::none());
   io_module.def("write_log", &io::write_log, "Writes a log in the project format.", "path"_a,
                 "log"_a);
 

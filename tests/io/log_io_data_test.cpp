@@ -1,10 +1,12 @@
-// The log readers on the bundled Malaga logs.
+// The log readers on the bundled Malaga logs and, when present, the Freiburg benchmark logs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <set>
+#include <string>
 
 #include "intgrid/io/log_io.hpp"
 #include "test_support.hpp"
@@ -89,6 +91,46 @@ TEST(BundledLog, WriteThenReadIsExact) {
     EXPECT_EQ(copy.odometry[i].t, original.odometry[i].t);
     EXPECT_EQ(copy.odometry[i].pose.x, original.odometry[i].pose.x);
   }
+}
+
+// ---- the Freiburg SLAM benchmark (not bundled) ----
+
+using test::absent;
+using test::benchmark_dir;
+
+void expect_one_sensor(const Log& log, double max_range) {
+  for (const Scan& scan : log.scans) {
+    ASSERT_EQ(scan.ranges.size(), 180u);
+    ASSERT_EQ(scan.max_range, max_range);
+    ASSERT_EQ(scan.sensor_mount, Pose2{});
+  }
+  EXPECT_TRUE(std::is_sorted(log.scans.begin(), log.scans.end(),
+                             [](const Scan& a, const Scan& b) { return a.t < b.t; }));
+  EXPECT_TRUE(
+      std::is_sorted(log.odometry.begin(), log.odometry.end(),
+                     [](const OdometryRecord& a, const OdometryRecord& b) { return a.t < b.t; }));
+}
+
+TEST(BenchmarkLog, IntelReadsEveryScanSorted) {
+  const std::filesystem::path file = benchmark_dir() / "intel.clf";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << absent(file);
+  const Log log = read_log(file);
+  EXPECT_EQ(log.scans.size(), 13631u);
+  EXPECT_EQ(log.odometry.size(), 26915u);
+  // 81.83 is intel.clf's saturation value (68,313 readings; none other above 26.37 m).
+  expect_one_sensor(log, 81.83);
+  // 631 scans are earlier than the one before (by at most 0.9 s): sorting moves 2,591.
+  EXPECT_EQ(log.reordered_scans, 2591u);
+}
+
+TEST(BenchmarkLog, AcesReadsEveryScanInOrder) {
+  const std::filesystem::path file = benchmark_dir() / "aces.clf";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << absent(file);
+  const Log log = read_log(file);
+  EXPECT_EQ(log.scans.size(), 7374u);
+  EXPECT_EQ(log.odometry.size(), 7375u);
+  expect_one_sensor(log, 50.0);  // 50.00 written 11,139 times
+  EXPECT_EQ(log.reordered_scans, 0u);
 }
 
 }  // namespace

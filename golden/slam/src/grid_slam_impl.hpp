@@ -23,22 +23,7 @@ constexpr std::int64_t round_div(std::int64_t a, std::int64_t b) {
   return floor_div(2 * a + b, 2 * b);
 }
 
-// floor(sqrt(v)) for v >= 0, bit by bit.
-constexpr std::int64_t isqrt(std::int64_t v) {
-  if (v <= 0) return 0;
-  std::uint64_t x = static_cast<std::uint64_t>(v), root = 0, bit = std::uint64_t{1} << 62;
-  while (bit > x) bit >>= 2;
-  while (bit != 0) {
-    if (x >= root + bit) {
-      x -= root + bit;
-      root = (root >> 1) + bit;
-    } else {
-      root >>= 1;
-    }
-    bit >>= 2;
-  }
-  return static_cast<std::int64_t>(root);
-}
+using core::ray_detail::isqrt;
 
 // The sum of n probabilities, pairwise: a running U_gamma sum stops growing once the total
 // is some 45 times each term (Phi_plus is 0 past that gap), a pairwise one adds like terms.

@@ -34,10 +34,10 @@ const char* geometry_difference(const core::Scan& b, const core::Scan& a) {
 }
 
 QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_robot,
-                            const SlamConfig& config, const std::string& name,
-                            std::size_t& readings, std::size_t& unusable) {
+                            double max_range, const std::string& name, std::size_t& readings,
+                            std::size_t& unusable) {
   QuantizedScan s;
-  const long long max_mm = std::llround(config.beam.max_range * 1000.0);
+  const long long max_mm = std::llround(max_range * 1000.0);
   s.range_mm.reserve(scan.ranges.size());
   for (const double r : scan.ranges) {
     ++readings;

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <iterator>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "intgrid/io/atomic_file.hpp"
@@ -58,6 +61,7 @@ class RecordFields {
   }
 
   std::string_view keyword() const { return keyword_; }
+  std::size_t line() const { return line_number_; }
 
   [[noreturn]] void fail(const FieldName& field, const std::string& message) const {
     throw InputError(file_, line_number_, field.str(), message);
@@ -95,8 +99,18 @@ class RecordFields {
     return pose;
   }
 
-  std::size_t next_beam_count() {
-    const FieldName field{"n"};
+  // A count of 0 to kMaxBeamsPerScan values.
+  std::size_t next_count(const FieldName& field) {
+    const long long count = parse_number<long long>(next_token(field), file_, line_number_, field);
+    if (count < 0) fail(field, "must be a non-negative integer, got " + std::to_string(count));
+    if (static_cast<unsigned long long>(count) > kMaxBeamsPerScan) {
+      fail(field, std::to_string(count) + " values is absurd (at most " +
+                      std::to_string(kMaxBeamsPerScan) + ")");
+    }
+    return static_cast<std::size_t>(count);
+  }
+
+  std::size_t next_beam_count(const FieldName& field) {
     const long long count = parse_number<long long>(next_token(field), file_, line_number_, field);
     if (count <= 0) fail(field, "must be a positive integer, got " + std::to_string(count));
     if (static_cast<unsigned long long>(count) > kMaxBeamsPerScan) {
@@ -156,7 +170,7 @@ void require_scans(const fs::path& file, const core::Log& log, std::string_view 
 
 core::Scan read_intgrid_scan(RecordFields& fields) {
   core::Scan scan;
-  const std::size_t count = fields.next_beam_count();
+  const std::size_t count = fields.next_beam_count({"n"});
   scan.angle0 = fields.next_finite({"angle0"});
   scan.dangle = fields.next_finite({"dangle"});
   scan.max_range = fields.next_positive({"maxrange"});
@@ -196,6 +210,82 @@ core::Log parse_intgrid_log(const fs::path& file, std::string_view text) {
 
 // ---- CARMEN ----
 
+// A laser record may be this much earlier than the latest one before it (logging jitter, sorted
+// into place); more is refused.
+constexpr double kMaxTimestampJitter = 1.0;  // s
+
+// Per-scan mounts that agree within this (m, rad) are one mount.
+constexpr double kMountTolerance = 1e-3;
+
+// A largest reading at least this many times, more often than all readings within
+// kSaturationBand below it together, is the sensor's saturation value.
+constexpr std::size_t kMinSaturationCount = 3;
+constexpr double kSaturationBand = 0.05;  // of the value
+
+// A laser record as read, before the choices made for the whole log (mount, FLASER max range).
+struct CarmenLaser {
+  core::Scan scan;
+  core::Pose2 laser;   // the laser's pose in the world frame, as written
+  bool flaser = true;  // FLASER carries no max range, ROBOTLASER1 does
+};
+
+// The PARAM values the reader uses.
+struct CarmenParams {
+  std::optional<double> front_laser_max;
+  std::optional<double> offset, side_offset, angular_offset;
+
+  bool has_mount() const { return offset || side_offset || angular_offset; }
+  core::Pose2 mount() const {
+    return {offset.value_or(0.0), side_offset.value_or(0.0), angular_offset.value_or(0.0)};
+  }
+};
+
+// The front laser's maximum range: robot_front_laser_max in the logs of the Freiburg benchmark,
+// or any other name ending in _laser_max or _laser_max_range that is not the rear laser's.
+bool is_front_laser_max_param(std::string_view name) {
+  return (name.ends_with("_laser_max") || name.ends_with("_laser_max_range")) &&
+         name.find("rear") == std::string_view::npos;
+}
+
+// PARAM name value [ipc_timestamp hostname logger_timestamp]: the trailer varies, and is ignored.
+void read_carmen_param(RecordFields& fields, CarmenParams& params) {
+  const std::string_view name = fields.next_token({"param_name"});
+  if (is_front_laser_max_param(name)) {
+    params.front_laser_max = fields.next_positive({"param_value"});
+  } else if (name == "robot_frontlaser_offset") {
+    params.offset = fields.next_finite({"param_value"});
+  } else if (name == "robot_frontlaser_side_offset") {
+    params.side_offset = fields.next_finite({"param_value"});
+  } else if (name == "robot_frontlaser_angular_offset") {
+    params.angular_offset = fields.next_finite({"param_value"});
+  }
+}
+
+// Records of one stream (laser or odometry) may come slightly out of time order; a record more
+// than kMaxTimestampJitter earlier than the latest one before it is an error on its line.
+class TimeOrder {
+ public:
+  explicit TimeOrder(const char* records) : records_(records) {}
+
+  void check(const RecordFields& fields, double t) {
+    if (latest_line_ != 0 && t < latest_ - kMaxTimestampJitter) {
+      fields.fail({"ipc_timestamp"},
+                  printed("%.6f goes back %.3f s from the %s record at line %zu (%.6f); only up "
+                          "to %.1f s of logging jitter is sorted into place",
+                          t, latest_ - t, records_, latest_line_, latest_, kMaxTimestampJitter));
+    }
+    if (latest_line_ == 0 || t > latest_) {
+      latest_ = t;
+      latest_line_ = fields.line();
+    }
+  }
+
+ private:
+  const char* records_;
+  double latest_ = 0.0;
+  std::size_t latest_line_ = 0;
+};
+
 // Every CARMEN message ends with these; the IPC time is when the data was taken.
 double read_carmen_timestamps(RecordFields& fields) {
   const double ipc_timestamp = fields.next_finite({"ipc_timestamp"});
@@ -211,21 +301,57 @@ double carmen_beam_step(std::size_t count) {
   return std::numbers::pi / static_cast<double>(steps);
 }
 
-core::Scan read_carmen_scan(RecordFields& fields, double max_range) {
-  core::Scan scan;
-  const std::size_t count = fields.next_beam_count();
+// FLASER n r_0..r_{n-1} x y theta odom_x odom_y odom_theta + timestamps.
+CarmenLaser read_flaser(RecordFields& fields) {
+  CarmenLaser record;
+  core::Scan& scan = record.scan;
+  const std::size_t count = fields.next_beam_count({"n"});
   if (count < 2) fields.fail({"n"}, "a FLASER scan needs at least 2 beams");
   scan.ranges = fields.next_ranges(count);
-  const core::Pose2 laser = fields.next_pose("x", "y", "theta");
+  record.laser = fields.next_pose("x", "y", "theta");
   scan.robot = fields.next_pose("odom_x", "odom_y", "odom_theta");
-  scan.sensor_mount = core::relative(scan.robot, laser);
-  // relative() leaves the heading difference unwrapped; a mount angle reads best in (-pi, pi].
-  scan.sensor_mount.theta = std::remainder(scan.sensor_mount.theta, 2.0 * std::numbers::pi);
   scan.t = read_carmen_timestamps(fields);
   scan.angle0 = -std::numbers::pi / 2.0;
   scan.dangle = carmen_beam_step(count);
-  scan.max_range = max_range;
-  return scan;
+  return record;
+}
+
+// ROBOTLASER1 laser_type start_angle field_of_view angular_resolution maximum_range accuracy
+// remission_mode num_readings r_.. num_remissions rem_.. laser_x laser_y laser_theta robot_x
+// robot_y robot_theta laser_tv laser_rv forward_safety_dist side_safety_dist turn_axis +
+// timestamps.
+CarmenLaser read_robotlaser(RecordFields& fields) {
+  CarmenLaser record;
+  record.flaser = false;
+  core::Scan& scan = record.scan;
+  fields.next_number({"laser_type"});
+  scan.angle0 = fields.next_finite({"start_angle"});
+  const double field_of_view = fields.next_positive({"field_of_view"});
+  scan.dangle = fields.next_positive({"angular_resolution"});
+  scan.max_range = fields.next_positive({"maximum_range"});
+  fields.next_number({"accuracy"});
+  fields.next_number({"remission_mode"});
+  const std::size_t count = fields.next_beam_count({"num_readings"});
+  // Writers put n = fov / res beams, or one more to include both ends.
+  const double steps = std::round(field_of_view / scan.dangle);
+  const double beams = static_cast<double>(count);
+  if (beams != steps && beams != steps + 1.0) {
+    fields.fail({"num_readings"},
+                printed("%zu readings do not fit field_of_view %g / angular_resolution %g = %.0f "
+                        "steps (expected %.0f or %.0f readings)",
+                        count, field_of_view, scan.dangle, steps, steps, steps + 1.0));
+  }
+  scan.ranges = fields.next_ranges(count);
+  const std::size_t remissions = fields.next_count({"num_remissions"});
+  for (std::size_t i = 0; i < remissions; ++i) fields.next_number({"rem_", i});
+  record.laser = fields.next_pose("laser_x", "laser_y", "laser_theta");
+  scan.robot = fields.next_pose("robot_x", "robot_y", "robot_theta");
+  for (const char* field :
+       {"laser_tv", "laser_rv", "forward_safety_dist", "side_safety_dist", "turn_axis"}) {
+    fields.next_number({field});
+  }
+  scan.t = read_carmen_timestamps(fields);
+  return record;
 }
 
 core::OdometryRecord read_carmen_odometry(RecordFields& fields) {
@@ -236,24 +362,111 @@ core::OdometryRecord read_carmen_odometry(RecordFields& fields) {
   return record;
 }
 
-core::Log parse_carmen_log(const fs::path& file, std::string_view text, double max_range,
-                           SkippedRecords* skipped) {
-  if (!std::isfinite(max_range) || !(max_range > 0.0)) {
+// The laser pose seen from the robot pose, its angle in (-pi, pi].
+core::Pose2 laser_seen_from_robot(const CarmenLaser& record) {
+  core::Pose2 mount = core::relative(record.scan.robot, record.laser);
+  mount.theta = core::wrap_angle(mount.theta);
+  return mount;
+}
+
+bool same_mount(const core::Pose2& a, const core::Pose2& b) {
+  return std::abs(a.x - b.x) <= kMountTolerance && std::abs(a.y - b.y) <= kMountTolerance &&
+         std::abs(core::wrap_angle(a.theta - b.theta)) <= kMountTolerance;
+}
+
+// One mount for the log (the rule is in log_io.hpp).
+core::Pose2 carmen_mount(const std::vector<CarmenLaser>& records, const CarmenParams& params) {
+  const core::Pose2 first = laser_seen_from_robot(records.front());
+  const bool constant = std::ranges::all_of(records, [&](const CarmenLaser& record) {
+    return same_mount(laser_seen_from_robot(record), first);
+  });
+  if (constant) return first;
+  return params.has_mount() ? params.mount() : core::Pose2{};
+}
+
+// The largest FLASER reading if it is a saturation value: repeated at least kMinSaturationCount
+// times and more often than all readings within kSaturationBand below it together (a far wall
+// spreads over neighbouring values, a saturated sensor writes one).
+std::optional<double> flaser_saturation_value(const std::vector<CarmenLaser>& records) {
+  double largest = 0.0;
+  for (const CarmenLaser& record : records) {
+    if (!record.flaser) continue;
+    for (const double r : record.scan.ranges) {
+      if (std::isfinite(r) && r > largest) largest = r;
+    }
+  }
+  if (!(largest > 0.0)) return std::nullopt;
+  const double band = largest * (1.0 - kSaturationBand);
+  std::size_t at_largest = 0, below = 0;
+  for (const CarmenLaser& record : records) {
+    if (!record.flaser) continue;
+    for (const double r : record.scan.ranges) {
+      if (r == largest) {
+        ++at_largest;
+      } else if (r >= band && r < largest) {
+        ++below;
+      }
+    }
+  }
+  if (at_largest >= kMinSaturationCount && at_largest > below) return largest;
+  return std::nullopt;
+}
+
+// Sorts records by t, keeping the order of equal times; returns how many changed position.
+template <class Record>
+std::size_t sort_by_time(std::vector<Record>& records) {
+  std::vector<std::size_t> order(records.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::ranges::stable_sort(order, {}, [&](std::size_t i) { return records[i].t; });
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < order.size(); ++i) moved += order[i] != i ? 1 : 0;
+  if (moved == 0) return 0;
+  std::vector<Record> sorted;
+  sorted.reserve(records.size());
+  for (const std::size_t i : order) sorted.push_back(std::move(records[i]));
+  records = std::move(sorted);
+  return moved;
+}
+
+core::Log parse_carmen_log(const fs::path& file, std::string_view text,
+                           std::optional<double> max_range, SkippedRecords* skipped) {
+  if (max_range && (!std::isfinite(*max_range) || !(*max_range > 0.0))) {
     throw std::invalid_argument("CARMEN max_range must be a positive finite number of metres");
   }
+  std::vector<CarmenLaser> lasers;
   core::Log log;
+  CarmenParams params;
+  TimeOrder laser_order("laser"), odometry_order("ODOM");
   RecordLines lines(text);
   while (const std::optional<Line> line = lines.next()) {
     RecordFields fields(file, *line);
-    if (fields.keyword() == "FLASER") {
-      log.scans.push_back(read_carmen_scan(fields, max_range));
-    } else if (fields.keyword() == "ODOM") {
+    const std::string_view keyword = fields.keyword();
+    if (keyword == "FLASER" || keyword == "ROBOTLASER1") {
+      lasers.push_back(keyword == "FLASER" ? read_flaser(fields) : read_robotlaser(fields));
+      laser_order.check(fields, lasers.back().scan.t);
+    } else if (keyword == "ODOM") {
       log.odometry.push_back(read_carmen_odometry(fields));
-    } else if (skipped != nullptr) {
-      ++(*skipped)[std::string(fields.keyword())];
+      odometry_order.check(fields, log.odometry.back().t);
+    } else {
+      if (keyword == "PARAM") read_carmen_param(fields, params);
+      if (skipped != nullptr) ++(*skipped)[std::string(keyword)];
     }
   }
-  require_scans(file, log, "FLASER");
+  if (lasers.empty()) require_scans(file, log, "FLASER or ROBOTLASER1");
+
+  const double flaser_max_range =
+      max_range                ? *max_range
+      : params.front_laser_max ? *params.front_laser_max
+                               : flaser_saturation_value(lasers).value_or(kCarmenDefaultMaxRange);
+  const core::Pose2 mount = carmen_mount(lasers, params);
+  log.scans.reserve(lasers.size());
+  for (CarmenLaser& record : lasers) {
+    if (record.flaser) record.scan.max_range = flaser_max_range;
+    record.scan.sensor_mount = mount;
+    log.scans.push_back(std::move(record.scan));
+  }
+  log.reordered_scans = sort_by_time(log.scans);
+  sort_by_time(log.odometry);
   return log;
 }
 
@@ -346,7 +559,7 @@ std::string format_intgrid_log(const core::Log& log) {
 core::Log read_log(const fs::path& file, SkippedRecords* skipped) {
   const std::string text = read_input_file(file);
   if (is_carmen_log(file, text)) {
-    return parse_carmen_log(file, text, kCarmenDefaultMaxRange, skipped);
+    return parse_carmen_log(file, text, std::nullopt, skipped);
   }
   return parse_intgrid_log(file, text);
 }
@@ -355,7 +568,8 @@ core::Log read_intgrid_log(const fs::path& file) {
   return parse_intgrid_log(file, read_input_file(file));
 }
 
-core::Log read_carmen_log(const fs::path& file, double max_range, SkippedRecords* skipped) {
+core::Log read_carmen_log(const fs::path& file, std::optional<double> max_range,
+                          SkippedRecords* skipped) {
   return parse_carmen_log(file, read_input_file(file), max_range, skipped);
 }
 

@@ -30,6 +30,22 @@ constexpr Int floor_div(Int a, Int b) {
   const Int q = a / b;
   return (a % b != 0 && ((a < 0) != (b < 0))) ? q - 1 : q;
 }
+// floor(sqrt(v)) for v >= 0, bit by bit.
+constexpr std::int64_t isqrt(std::int64_t v) {
+  if (v <= 0) return 0;
+  std::uint64_t x = static_cast<std::uint64_t>(v), root = 0, bit = std::uint64_t{1} << 62;
+  while (bit > x) bit >>= 2;
+  while (bit != 0) {
+    if (x >= root + bit) {
+      x -= root + bit;
+      root = (root >> 1) + bit;
+    } else {
+      root >>= 1;
+    }
+    bit >>= 2;
+  }
+  return static_cast<std::int64_t>(root);
+}
 }  // namespace ray_detail
 
 // Rays over a grid of cell_mm cells, with a sine table of make_sine_table_q16's.

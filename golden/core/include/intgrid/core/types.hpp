@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <vector>
 
@@ -63,6 +64,7 @@ struct OdometryRecord {
 struct Log {
   std::vector<Scan> scans;
   std::vector<OdometryRecord> odometry;
+  std::size_t reordered_scans = 0;  // scans a reader moved to put them in time order
 };
 
 }  // namespace intgrid::core

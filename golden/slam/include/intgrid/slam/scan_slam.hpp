@@ -25,12 +25,17 @@ const char* geometry_difference(const core::Scan& b, const core::Scan& a);
 
 // One scan's inputs to the per-scan path, from its core::Scan and the previous scan's robot pose:
 // ranges in mm (0: no usable return: not a valid reading of the scan, or at or past the beam
-// model's max_range) and the odometry increment in the previous robot frame. Counts the readings
-// and the unusable ones. Throws std::invalid_argument, naming `name`, for an odometry step that
-// is not finite or longer than 1 km.
+// model's max_range, in metres) and the odometry increment in the previous robot frame. Counts the
+// readings and the unusable ones. Throws std::invalid_argument, naming `name`, for an odometry step
+// that is not finite or longer than 1 km.
 QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_robot,
-                            const SlamConfig& config, const std::string& name,
-                            std::size_t& readings, std::size_t& unusable);
+                            double max_range, const std::string& name, std::size_t& readings,
+                            std::size_t& unusable);
+inline QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_robot,
+                                   const SlamConfig& config, const std::string& name,
+                                   std::size_t& readings, std::size_t& unusable) {
+  return quantize_scan(scan, previous_robot, config.beam.max_range, name, readings, unusable);
+}
 
 class ScanSlam {
  public:

@@ -1,0 +1,156 @@
+// SLAM with submaps and loop closure, online: scans and odometry go in one at a time, poses come
+// out. The front end is the per-scan path, integer-only in the integer arithmetic:
+//   motion      the pose follows the odometry increment (mm, angle units);
+//   localization the scan is matched against the older of two active submaps by index sums over
+//               a pose lattice (scan_matching.hpp), widening the window when the match is weak;
+//   mapping     a scan that moved far enough since the last one inserted is fused into both
+//               active submaps (S_eps index addition along integer rays) and becomes a node.
+// Each submap's grid grows as the robot explores. The back end works in floating point, off the
+// per-scan path: a pose graph of submaps and nodes (optimization::PoseGraph) whose loop closures
+// come from matching nodes against finished submaps near them, by branch and bound over the same
+// index sums, with a robust loss; it is optimized every few nodes and at the end.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "intgrid/core/grid.hpp"
+#include "intgrid/core/mapping.hpp"
+#include "intgrid/core/seps.hpp"
+#include "intgrid/core/types.hpp"
+#include "intgrid/slam/log_run.hpp"
+
+namespace intgrid::slam {
+
+// The options, nested by concern. Chosen on the Intel and ACES benchmark logs only
+// (docs/results.md); the sensor's beam layout and range come from the log.
+struct GraphSlamConfig {
+  double cell = 0.05;   // submap cell (m), a whole number of millimetres
+  int headings = 1024;  // heading steps per turn of the match lattice: a power of two, 64..16384
+
+  struct Sensor {
+    double sigma = 0.05;      // range noise of the beam model the ISM is built on (m)
+    double max_range = 30.0;  // readings at or past this are not used (m)
+  } sensor;
+
+  // The submaps' S_eps grids.
+  struct Map {
+    int seps_bits = 8;
+    int seps_levels = 16;  // one reading's strongest occupied index
+    int empty_divisor = 1;
+  } map;
+
+  struct Submaps {
+    int scans = 90;  // nodes a submap takes before the next starts; each takes twice as many
+  } submaps;
+
+  // A scan becomes a node (mapping event) once the pose moved this far since the last node.
+  struct MotionFilter {
+    double distance = 0.1;  // m
+    double degrees = 2.0;
+    double seconds = 5.0;
+  } filter;
+
+  // Scan-to-submap matching of every scan.
+  struct Tracking {
+    double window = 0.3;          // translations searched: +-window (m)
+    double window_degrees = 8.0;  // headings searched: +-window_degrees
+    // A match scoring under this fraction of every hit on the strongest cell is searched again
+    // in the wide window: odometry that slipped.
+    double wide_below = 0.03;
+    double wide_window = 1.0;
+    double wide_degrees = 30.0;
+    // The odometry's prior: a pose this far from the prediction costs the full score, a spread
+    // that grows with the increment: prior_xy + prior_xy_per_m |translation| (m) and
+    // prior_degrees + prior_degrees_per_degree |rotation|.
+    double prior_xy = 0.15;
+    double prior_xy_per_m = 0.0;
+    double prior_degrees = 5.0;
+    double prior_degrees_per_degree = 0.0;
+    int min_hits = 20;  // scans with fewer hits follow the odometry
+  } tracking;
+
+  // Matching of nodes against finished submaps: loop closure.
+  struct LoopClosure {
+    int every = 4;             // every how many nodes a search is made
+    double max_distance = 20;  // m: submaps whose middle node lies this near the node's estimate
+    int submaps = 4;           // of them, the nearest searched
+    double window = 5.0;       // m, +- around the estimate
+    double window_degrees = 25;
+    double min_score = 0.55;  // fraction of every hit on the strongest cell
+    double sigma_xy = 0.03;   // m, the closure's spread in the graph
+    double sigma_degrees = 0.3;
+  } loops;
+
+  // The pose graph.
+  struct Graph {
+    double local_sigma_xy = 0.05;  // node in its submaps, from the front end (m)
+    double local_sigma_degrees = 0.5;
+    double odometry_sigma_xy = 0.1;  // one node to the next, from the front end (m)
+    double odometry_sigma_degrees = 1.0;
+    int optimize_every = 40;  // nodes between optimizations that have new loop closures
+    int iterations = 10;
+    double huber = 5.0;  // in sigmas
+  } graph;
+};
+
+// Throws std::invalid_argument naming the offending field by its path (`loops.window`).
+void check_graph_slam_config(const GraphSlamConfig& config);
+
+struct GraphSlamStats {
+  std::size_t scans = 0;
+  std::size_t nodes = 0;
+  std::size_t submaps = 0;
+  std::size_t wide_searches = 0;    // scans the narrow window did not match well
+  std::size_t unmatched_scans = 0;  // too few hits or no map yet: odometry only
+  std::size_t loop_searches = 0;    // node-submap pairs searched
+  std::size_t loop_closures = 0;    // of them, matched and added to the graph
+  std::size_t optimizations = 0;
+  std::size_t readings = 0;
+  std::size_t unusable_readings = 0;
+  std::size_t peak_pyramid_bytes = 0;
+};
+
+class GraphSlam {
+ public:
+  // A run whose sensor geometry (beam count, bearings, max range, mount) is `first`'s; the SLAM
+  // frame is first.robot. Throws std::invalid_argument for a bad configuration.
+  GraphSlam(const GraphSlamConfig& config, core::Arithmetic arithmetic, const core::Scan& first);
+  ~GraphSlam();
+  GraphSlam(GraphSlam&&) noexcept;
+  GraphSlam& operator=(GraphSlam&&) noexcept;
+
+  // The next scan, `first` included. Throws std::invalid_argument for a scan of another geometry
+  // or an odometry jump over 1 km.
+  void insert(const core::Scan& scan);
+  // Optimizes the graph once more with every closure found: call after the last scan.
+  void finish();
+
+  core::Pose2 pose() const;  // the last scan's, in the log's frame
+  // Every scan's pose so far, in the log's frame, as the graph now places them.
+  std::vector<TimedPose> trajectory() const;
+  // The map of every node at its optimized pose: S_eps indices in the SLAM frame (the double
+  // arithmetic's rounded to the nearest index). Geometry in metres of the SLAM frame.
+  core::Grid<std::int8_t> map() const;
+  const core::SepsCodec& codec() const;
+  core::Pose2 frame() const { return frame_; }
+  GraphSlamStats stats() const;
+
+ private:
+  struct Engine;
+  template <class Cell>
+  struct EngineOf;
+  std::unique_ptr<Engine> engine_;
+  core::Scan geometry_;
+  core::Pose2 frame_, previous_robot_;
+  std::vector<double> times_;  // every scan's
+};
+
+// Runs the whole log through GraphSlam, then finish(). progress(done, total) after each scan.
+SlamRun run_graph_slam(const core::Log& log, const GraphSlamConfig& config,
+                       core::Arithmetic arithmetic, GraphSlamStats* stats = nullptr,
+                       const core::Progress& progress = {});
+
+}  // namespace intgrid::slam

@@ -1,0 +1,508 @@
+// GraphSlam's back end: the set-up of the per-scan path, the pose graph of submaps and nodes, loop
+// closure and the final map. Floating point here only converts poses between the per-scan path's
+// integers and the graph's doubles, and runs the graph's optimizer.
+#include "intgrid/slam/graph_slam.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <list>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "intgrid/core/failure.hpp"
+#include "intgrid/core/ray_insertion.hpp"
+#include "intgrid/core/resolution.hpp"
+#include "intgrid/optimization/pose_graph.hpp"
+#include "intgrid/slam/scan_slam.hpp"
+#include "submap_tracking.hpp"
+
+namespace intgrid::slam {
+namespace {
+
+constexpr double kUnitRadians = 2.0 * std::numbers::pi / core::kAngleUnitsPerTurn;
+
+void require(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) core::fail<std::invalid_argument>(field + " " + what);
+}
+
+std::int64_t millimetres(double m) {
+  return std::llround(m * 1000.0);
+}
+std::int64_t angle_units(double radians) {
+  return std::llround(radians / kUnitRadians);
+}
+double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
+
+core::Pose2 to_pose2(const SlamPose& p) {
+  return {static_cast<double>(p.x_mm) * 1e-3, static_cast<double>(p.y_mm) * 1e-3,
+          static_cast<double>(p.theta) * kUnitRadians};
+}
+SlamPose to_slam_pose(const core::Pose2& p) {
+  return {millimetres(p.x), millimetres(p.y), angle_units(p.theta)};
+}
+core::Pose2 inverse(const core::Pose2& p) {
+  return core::relative(p, {});
+}
+
+SearchWindow search_window(double window_m, double degrees, double prior_m, double prior_degrees,
+                           std::int32_t cell_mm, std::int32_t step_units) {
+  SearchWindow w;
+  w.cells = static_cast<int>(std::ceil(window_m * 1000.0 / cell_mm - 1e-9));
+  w.step_units = step_units;
+  w.steps = static_cast<int>(
+      std::ceil(static_cast<double>(angle_units(radians(degrees))) / step_units - 1e-9));
+  w.prior_xy_mm = prior_m > 0.0 ? millimetres(prior_m) : 0;
+  w.prior_theta_units = prior_degrees > 0.0 ? angle_units(radians(prior_degrees)) : 0;
+  return w;
+}
+
+core::SepsCodec make_codec(const GraphSlamConfig& c) {
+  return core::SepsCodec::for_levels(c.map.seps_bits, core::narrow_pmax(c.cell, c.sensor.sigma),
+                                     c.map.seps_levels);
+}
+
+std::int32_t ism_step_mm(const GraphSlamConfig& c) {
+  return std::max<std::int32_t>(1, static_cast<std::int32_t>(millimetres(c.cell)) / 8);
+}
+
+template <class Cell>
+core::IsmTable<Cell> make_table(const GraphSlamConfig& c, const core::SepsCodec& codec);
+
+template <>
+core::IsmTable<std::int8_t> make_table(const GraphSlamConfig& c, const core::SepsCodec& codec) {
+  return core::make_index_ism_table(
+      core::GaussianBeamModel{c.sensor.sigma, 0.0}, c.cell, codec, ism_step_mm(c),
+      static_cast<std::int32_t>(millimetres(c.sensor.max_range)), c.map.empty_divisor);
+}
+
+// The exact ISM's log-odds in S_eps steps, bounded as the index table's are by the most one
+// reading may claim (p_levels = Pmax, the narrow ISM's bound: the exact ISM's empty cells reach
+// probabilities near 0, which one reading must not carry), empty values divided likewise.
+template <>
+core::IsmTable<LogOdds> make_table(const GraphSlamConfig& c, const core::SepsCodec& codec) {
+  const core::IsmTable<double> p = core::make_probability_ism_table(
+      core::GaussianBeamModel{c.sensor.sigma, 0.0}, c.cell, ism_step_mm(c),
+      static_cast<std::int32_t>(millimetres(c.sensor.max_range)));
+  const double bound = c.map.seps_levels;
+  std::vector<LogOdds> values;
+  values.reserve(p.values.size());
+  for (const double v : p.values) {
+    double steps = std::clamp(core::logit(v) / codec.lambda(), -bound, bound);
+    if (steps < 0.0) steps /= c.map.empty_divisor;
+    values.push_back({steps});
+  }
+  return core::make_ism_table(p.z_step_mm, p.begin, std::move(values));
+}
+
+}  // namespace
+
+void check_graph_slam_config(const GraphSlamConfig& c) {
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  require(positive(c.cell) && c.cell >= 0.005 && c.cell <= 1.0, "cell",
+          "must be in [0.005, 1] metres");
+  require(std::abs(c.cell * 1000.0 - std::round(c.cell * 1000.0)) < 1e-6, "cell",
+          "must be a whole number of millimetres");
+  require(c.headings >= 64 && c.headings <= 16384 && (c.headings & (c.headings - 1)) == 0,
+          "headings", "must be a power of two from 64 to 16384");
+  require(positive(c.sensor.sigma) && c.sensor.sigma >= 0.001 && c.sensor.sigma <= 1.0,
+          "sensor.sigma", "must be in [0.001, 1] metres");
+  require(positive(c.sensor.max_range) && c.sensor.max_range <= 200.0 &&
+              c.sensor.max_range >= 2.0 * c.cell,
+          "sensor.max_range", "must be in [2 cells, 200] metres");
+  require(c.map.seps_bits >= 2 && c.map.seps_bits <= 8, "map.seps_bits",
+          "must be 2..8 (the map is 8-bit)");
+  require(c.map.seps_levels >= 1 && c.map.seps_levels < (1 << (c.map.seps_bits - 1)),
+          "map.seps_levels", "must be >= 1 and below the largest index");
+  require(c.map.empty_divisor >= 1 && c.map.empty_divisor <= 127, "map.empty_divisor",
+          "must be 1..127");
+  require(c.submaps.scans >= 1 && c.submaps.scans <= 100000, "submaps.scans", "must be 1..100000");
+  require(non_negative(c.filter.distance) && c.filter.distance <= 100.0, "filter.distance",
+          "must be in [0, 100] metres");
+  require(non_negative(c.filter.degrees) && c.filter.degrees <= 180.0, "filter.degrees",
+          "must be in [0, 180]");
+  require(non_negative(c.filter.seconds) && c.filter.seconds <= 1e6, "filter.seconds",
+          "must be in [0, 1e6]");
+  const auto window = [&](double m, double degrees, const std::string& name) {
+    require(non_negative(m) && m <= 20.0, name + "window", "must be in [0, 20] metres");
+    require(non_negative(degrees) && degrees <= 180.0, name + "degrees", "must be in [0, 180]");
+  };
+  window(c.tracking.window, c.tracking.window_degrees, "tracking.");
+  window(c.tracking.wide_window, c.tracking.wide_degrees, "tracking.wide_");
+  window(c.loops.window, c.loops.window_degrees, "loops.");
+  // Every pose of these windows is scored.
+  require(c.tracking.window <= 2.0, "tracking.window", "must be at most 2 metres");
+  require(c.tracking.wide_window <= 3.0, "tracking.wide_window", "must be at most 3 metres");
+  require(non_negative(c.tracking.wide_below) && c.tracking.wide_below <= 1.0,
+          "tracking.wide_below", "must be in [0, 1]");
+  require(non_negative(c.tracking.prior_xy) && c.tracking.prior_xy <= 1000.0, "tracking.prior_xy",
+          "must be in [0, 1000] metres (0: no prior)");
+  require(non_negative(c.tracking.prior_degrees) && c.tracking.prior_degrees <= 1e4,
+          "tracking.prior_degrees", "must be in [0, 1e4] (0: no prior)");
+  require(non_negative(c.tracking.prior_xy_per_m) && c.tracking.prior_xy_per_m <= 100.0,
+          "tracking.prior_xy_per_m", "must be in [0, 100]");
+  require(non_negative(c.tracking.prior_degrees_per_degree) &&
+              c.tracking.prior_degrees_per_degree <= 100.0,
+          "tracking.prior_degrees_per_degree", "must be in [0, 100]");
+  require(c.tracking.min_hits >= 1 && c.tracking.min_hits <= 100000, "tracking.min_hits",
+          "must be 1..100000");
+  require(c.loops.every >= 1, "loops.every", "must be >= 1");
+  require(c.loops.submaps >= 1, "loops.submaps", "must be >= 1");
+  require(non_negative(c.loops.max_distance) && c.loops.max_distance <= 1000.0,
+          "loops.max_distance", "must be in [0, 1000] metres");
+  require(positive(c.loops.min_score) && c.loops.min_score <= 1.0, "loops.min_score",
+          "must be in (0, 1]");
+  for (const auto& [v, name] : {std::pair{c.loops.sigma_xy, "loops.sigma_xy"},
+                                {c.loops.sigma_degrees, "loops.sigma_degrees"},
+                                {c.graph.local_sigma_xy, "graph.local_sigma_xy"},
+                                {c.graph.local_sigma_degrees, "graph.local_sigma_degrees"},
+                                {c.graph.odometry_sigma_xy, "graph.odometry_sigma_xy"},
+                                {c.graph.odometry_sigma_degrees, "graph.odometry_sigma_degrees"},
+                                {c.graph.huber, "graph.huber"}})
+    require(positive(v) && v <= 1000.0, name, "must be in (0, 1000]");
+  require(c.graph.optimize_every >= 1, "graph.optimize_every", "must be >= 1");
+  require(c.graph.iterations >= 1 && c.graph.iterations <= 1000, "graph.iterations",
+          "must be 1..1000");
+}
+
+struct GraphSlam::Engine {
+  virtual ~Engine() = default;
+  virtual void insert(const QuantizedScan& scan, double t) = 0;
+  virtual void finish() = 0;
+  virtual std::vector<core::Pose2> scan_poses() const = 0;  // SLAM frame
+  virtual core::Grid<std::int8_t> map() const = 0;
+  GraphSlamConfig config;
+  core::SepsCodec codec{8, 0.1};
+  GraphSlamStats stats;
+};
+
+template <class Cell>
+struct GraphSlam::EngineOf final : GraphSlam::Engine {
+  struct Node {
+    SlamPose local;
+    std::size_t vertex = 0;
+    std::vector<std::int32_t> range_mm;
+  };
+  struct SubmapRecord {
+    std::size_t vertex = 0;
+    SlamPose anchor;
+    std::vector<std::size_t> nodes;
+    std::optional<LocalGrid<Cell>> grid;  // once finished
+  };
+  struct ScanRecord {
+    std::size_t node;  // the last node at or before it (npos: none yet)
+    SlamPose local;
+  };
+
+  EngineOf(const GraphSlamConfig& c, const core::SepsCodec& codec_, TrackerSetup setup)
+      : tracker(std::move(setup), make_table<Cell>(c, codec_)) {
+    config = c;
+    codec = codec_;
+    const TrackerSetup& s = tracker.setup();
+    loop_window = search_window(c.loops.window, c.loops.window_degrees, 0.0, 0.0, s.cell_mm,
+                                s.narrow.step_units);
+  }
+
+  LocalTracker<Cell> tracker;
+  optimization::PoseGraph graph;
+  std::vector<Node> nodes;
+  std::vector<SubmapRecord> submaps;
+  std::vector<ScanRecord> scans;
+  SearchWindow loop_window;
+  std::size_t pending_closures = 0, nodes_since_optimization = 0;
+  std::list<std::pair<std::size_t, MaxPyramid<Cell>>> pyramids;  // most recently used first
+
+  // The local frame in the graph's: where the last node's local pose lands.
+  core::Pose2 correction() const {
+    if (nodes.empty()) return {};
+    const Node& last = nodes.back();
+    return core::compose(graph.poses()[last.vertex], inverse(to_pose2(last.local)));
+  }
+
+  const MaxPyramid<Cell>& pyramid_of(std::size_t id) {
+    for (auto it = pyramids.begin(); it != pyramids.end(); ++it)
+      if (it->first == id) {
+        pyramids.splice(pyramids.begin(), pyramids, it);
+        return pyramids.front().second;
+      }
+    pyramids.emplace_front(id,
+                           MaxPyramid<Cell>(*submaps[id].grid, pyramid_levels(loop_window.cells)));
+    // The least recently used go once the cache passes 12 pyramids or 192 MB (double cells take
+    // eight times the bytes of S_eps ones).
+    constexpr std::size_t kKept = 12, kKeptBytes = std::size_t{192} << 20;
+    std::size_t bytes = 0;
+    for (const auto& p : pyramids) bytes += p.second.bytes();
+    while (pyramids.size() > 1 && (pyramids.size() > kKept || bytes > kKeptBytes)) {
+      bytes -= pyramids.back().second.bytes();
+      pyramids.pop_back();
+    }
+    stats.peak_pyramid_bytes = std::max(stats.peak_pyramid_bytes, bytes);
+    return pyramids.front().second;
+  }
+
+  void insert(const QuantizedScan& scan, double t) override {
+    ++stats.scans;
+    const TrackStep step = tracker.track(scan, std::llround(t * 1000.0));
+    stats.wide_searches += step.wide;
+    stats.unmatched_scans += !step.matched;
+    for (Submap<Cell>& done : tracker.take_finished()) submaps[done.id].grid = std::move(done.grid);
+    if (step.node) add_node(step, scan);
+    scans.push_back({nodes.empty() ? static_cast<std::size_t>(-1) : nodes.size() - 1, step.pose});
+  }
+
+  void add_node(const TrackStep& step, const QuantizedScan& scan) {
+    const core::Pose2 corr = correction();
+    const core::Pose2 local = to_pose2(step.pose);
+    const auto& g = config.graph;
+    for (const std::size_t id : step.submaps)
+      if (id == submaps.size()) {
+        SlamPose anchor{step.pose.x_mm, step.pose.y_mm, 0};
+        submaps.push_back({graph.add_node(core::compose(corr, to_pose2(anchor))), anchor, {}, {}});
+        ++stats.submaps;
+      }
+    Node node{step.pose, graph.add_node(core::compose(corr, local)), scan.range_mm};
+    for (const std::size_t id : step.submaps) {
+      SubmapRecord& s = submaps[id];
+      graph.add_edge({s.vertex, node.vertex, core::relative(to_pose2(s.anchor), local),
+                      g.local_sigma_xy, radians(g.local_sigma_degrees), false});
+      s.nodes.push_back(nodes.size());
+    }
+    if (!nodes.empty())
+      graph.add_edge({nodes.back().vertex, node.vertex,
+                      core::relative(to_pose2(nodes.back().local), local), g.odometry_sigma_xy,
+                      radians(g.odometry_sigma_degrees), false});
+    nodes.push_back(std::move(node));
+    ++stats.nodes;
+    if (nodes.size() % static_cast<std::size_t>(config.loops.every) == 0) search_loops(step);
+    ++nodes_since_optimization;
+    if (pending_closures > 0 &&
+        nodes_since_optimization >= static_cast<std::size_t>(g.optimize_every))
+      optimize(g.iterations);
+  }
+
+  void search_loops(const TrackStep& step) {
+    const Node& node = nodes.back();
+    const core::Pose2 global = graph.poses()[node.vertex];
+    const ScanPoints& points = tracker.points();
+    const std::int64_t full = static_cast<std::int64_t>(points.size()) * tracker.setup().max_index;
+    const auto min_score = static_cast<MatchScore<Cell>>(
+        std::llround(static_cast<double>(full) * config.loops.min_score));
+    const double reach2 = config.loops.max_distance * config.loops.max_distance;
+    // The nearest finished submaps (by their middle node), nearest first.
+    std::vector<std::pair<double, std::size_t>> near;
+    for (std::size_t id = 0; id < submaps.size(); ++id) {
+      const SubmapRecord& s = submaps[id];
+      if (!s.grid || std::find(step.submaps.begin(), step.submaps.end(), id) != step.submaps.end())
+        continue;
+      const core::Pose2 middle = graph.poses()[nodes[s.nodes[s.nodes.size() / 2]].vertex];
+      const double dx = middle.x - global.x, dy = middle.y - global.y;
+      if (dx * dx + dy * dy <= reach2) near.emplace_back(dx * dx + dy * dy, id);
+    }
+    std::sort(near.begin(), near.end());
+    near.resize(std::min(near.size(), static_cast<std::size_t>(config.loops.submaps)));
+    for (const auto& [distance2, id] : near) {
+      SubmapRecord& s = submaps[id];
+      const core::Pose2 submap_pose = graph.poses()[s.vertex];
+      const core::Pose2 guess_pose =
+          core::compose(to_pose2(s.anchor), core::relative(submap_pose, global));
+      SlamPose guess = to_slam_pose(guess_pose);
+      ++stats.loop_searches;
+      const Match<Cell> lattice =
+          match_branch_and_bound(pyramid_of(id), tracker.rays(), points, guess, loop_window,
+                                 tracker.setup().max_index, min_score);
+      if (!lattice.found) continue;
+      const Match<Cell> refined = refine_match(*s.grid, tracker.rays(), points, guess, loop_window,
+                                               tracker.setup().max_index, lattice);
+      graph.add_edge({s.vertex, node.vertex,
+                      core::relative(to_pose2(s.anchor), to_pose2(refined.pose)),
+                      config.loops.sigma_xy, radians(config.loops.sigma_degrees), true});
+      ++stats.loop_closures;
+      ++pending_closures;
+    }
+  }
+
+  void optimize(int iterations) {
+    optimization::OptimizeOptions options;
+    options.max_iterations = iterations;
+    options.huber_scale = config.graph.huber;
+    graph.optimize(options);
+    ++stats.optimizations;
+    pending_closures = 0;
+    nodes_since_optimization = 0;
+  }
+
+  void finish() override {
+    if (graph.edges() > 0) optimize(3 * config.graph.iterations);
+  }
+
+  std::vector<core::Pose2> scan_poses() const override {
+    std::vector<core::Pose2> out;
+    out.reserve(scans.size());
+    for (const ScanRecord& s : scans) {
+      if (s.node == static_cast<std::size_t>(-1)) {
+        out.push_back(to_pose2(s.local));
+        continue;
+      }
+      const Node& n = nodes[s.node];
+      out.push_back(core::compose(graph.poses()[n.vertex],
+                                  core::relative(to_pose2(n.local), to_pose2(s.local))));
+    }
+    return out;
+  }
+
+  core::Grid<std::int8_t> map() const override {
+    const TrackerSetup& s = tracker.setup();
+    const core::IsmTable<Cell> table = make_table<Cell>(config, codec);
+    const core::IntegerRays rays = tracker.rays();
+    LocalGrid<Cell> grid(s.cell_mm);
+    grid.cover(-1, -1, 1, 1);
+    for (const Node& n : nodes) {
+      const SlamPose p = to_slam_pose(graph.poses()[n.vertex]);
+      const auto [mx, my] =
+          rays.rotate(static_cast<std::int32_t>(p.theta), s.sensor.mount_x_mm, s.sensor.mount_y_mm);
+      grid.insert(rays, table, p.x_mm + mx, p.y_mm + my,
+                  static_cast<std::int32_t>(p.theta + s.sensor.mount_theta), s.sensor.bearing,
+                  n.range_mm, s.max_range_mm, s.max_index);
+    }
+    const double cell = s.cell_mm * 1e-3;
+    core::Grid<std::int8_t> out(
+        core::GridGeometry{grid.width(), grid.height(), cell, (grid.x0() - 0.5) * cell,
+                           (grid.y0() - 0.5) * cell},
+        std::int8_t{0});
+    const std::span<const Cell> cells = grid.cells();
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if constexpr (std::is_same_v<Cell, LogOdds>)
+        out.cells[i] = static_cast<std::int8_t>(std::lround(cells[i].steps));
+      else
+        out.cells[i] = cells[i];
+    }
+    return out;
+  }
+};
+
+GraphSlam::GraphSlam(const GraphSlamConfig& config, core::Arithmetic arithmetic,
+                     const core::Scan& first)
+    : geometry_(first), frame_(first.robot), previous_robot_(first.robot) {
+  check_graph_slam_config(config);
+  geometry_.ranges.assign(first.ranges.size(), 0.0);
+  const double mount = std::hypot(first.sensor_mount.x, first.sensor_mount.y);
+  if (!std::isfinite(mount) || mount > 100.0 || !std::isfinite(first.sensor_mount.theta))
+    core::fail<std::invalid_argument>("SLAM: the sensor is mounted more than 100 m from the robot");
+  if (first.ranges.empty() || first.ranges.size() > 100000)
+    core::fail<std::invalid_argument>("SLAM: the first scan has " +
+                                      std::to_string(first.ranges.size()) +
+                                      " ranges; SLAM takes 1 to 100000");
+  TrackerSetup s;
+  s.cell_mm = static_cast<std::int32_t>(millimetres(config.cell));
+  s.max_range_mm = static_cast<std::int32_t>(millimetres(config.sensor.max_range));
+  for (std::size_t i = 0; i < first.ranges.size(); ++i)
+    s.sensor.bearing.push_back(static_cast<std::int32_t>(angle_units(first.bearing(i))));
+  s.sensor.mount_x_mm = static_cast<std::int32_t>(millimetres(first.sensor_mount.x));
+  s.sensor.mount_y_mm = static_cast<std::int32_t>(millimetres(first.sensor_mount.y));
+  s.sensor.mount_theta = static_cast<std::int32_t>(angle_units(first.sensor_mount.theta));
+  s.sin_q16 = core::make_sine_table_q16();
+  const core::SepsCodec codec = make_codec(config);
+  s.max_index = codec.max_index();
+  const std::int32_t step = core::kAngleUnitsPerTurn / config.headings;
+  const auto& t = config.tracking;
+  s.narrow =
+      search_window(t.window, t.window_degrees, t.prior_xy, t.prior_degrees, s.cell_mm, step);
+  s.wide =
+      search_window(t.wide_window, t.wide_degrees, t.prior_xy, t.prior_degrees, s.cell_mm, step);
+  s.prior_xy_per_mm_q16 = std::llround(t.prior_xy_per_m * 65536.0);
+  s.prior_theta_per_unit_q16 = std::llround(t.prior_degrees_per_degree * 65536.0);
+  s.wide_below_permille = std::llround(t.wide_below * 1000.0);
+  s.min_hits = t.min_hits;
+  s.submap_scans = config.submaps.scans;
+  s.filter_mm = millimetres(config.filter.distance);
+  s.filter_units = angle_units(radians(config.filter.degrees));
+  s.filter_ms = std::llround(config.filter.seconds * 1000.0);
+  if (arithmetic == core::Arithmetic::integer)
+    engine_ = std::make_unique<EngineOf<std::int8_t>>(config, codec, std::move(s));
+  else
+    engine_ = std::make_unique<EngineOf<LogOdds>>(config, codec, std::move(s));
+}
+
+GraphSlam::~GraphSlam() = default;
+GraphSlam::GraphSlam(GraphSlam&&) noexcept = default;
+GraphSlam& GraphSlam::operator=(GraphSlam&&) noexcept = default;
+
+void GraphSlam::insert(const core::Scan& scan) {
+  const std::size_t number = engine_->stats.scans + 1;
+  if (const char* differs = geometry_difference(scan, geometry_))
+    core::fail<std::invalid_argument>(scan_label(number, scan.t) + " has another " + differs +
+                                      " than the first scan; SLAM needs one sensor geometry");
+  const QuantizedScan q = quantize_scan(
+      scan, number > 1 ? &previous_robot_ : nullptr, engine_->config.sensor.max_range,
+      scan_label(number, scan.t), engine_->stats.readings, engine_->stats.unusable_readings);
+  engine_->insert(q, scan.t - geometry_.t);
+  previous_robot_ = scan.robot;
+  times_.push_back(scan.t);
+}
+
+void GraphSlam::finish() {
+  engine_->finish();
+}
+
+core::Pose2 GraphSlam::pose() const {
+  const std::vector<core::Pose2> poses = engine_->scan_poses();
+  if (poses.empty()) return frame_;
+  core::Pose2 p = core::compose(frame_, poses.back());
+  p.theta = core::wrap_angle(p.theta);
+  return p;
+}
+
+std::vector<TimedPose> GraphSlam::trajectory() const {
+  const std::vector<core::Pose2> poses = engine_->scan_poses();
+  std::vector<TimedPose> out;
+  out.reserve(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    core::Pose2 p = core::compose(frame_, poses[i]);
+    p.theta = core::wrap_angle(p.theta);
+    out.push_back({times_[i], p});
+  }
+  return out;
+}
+
+core::Grid<std::int8_t> GraphSlam::map() const {
+  return engine_->map();
+}
+const core::SepsCodec& GraphSlam::codec() const {
+  return engine_->codec;
+}
+GraphSlamStats GraphSlam::stats() const {
+  return engine_->stats;
+}
+
+SlamRun run_graph_slam(const core::Log& log, const GraphSlamConfig& config,
+                       core::Arithmetic arithmetic, GraphSlamStats* stats,
+                       const core::Progress& progress) {
+  check_graph_slam_config(config);
+  check_slam_log(log);
+  GraphSlam slam(config, arithmetic, log.scans.front());
+  for (std::size_t i = 0; i < log.scans.size(); ++i) {
+    slam.insert(log.scans[i]);
+    if (progress) progress(i + 1, log.scans.size());
+  }
+  slam.finish();
+  SlamRun run;
+  run.trajectory = slam.trajectory();
+  run.map = slam.map();
+  run.codec = slam.codec();
+  run.frame = slam.frame();
+  const GraphSlamStats s = slam.stats();
+  run.scans = s.scans;
+  run.localizations = s.scans - s.unmatched_scans;
+  run.mappings = s.nodes;
+  run.skipped_scans = s.unmatched_scans;
+  run.readings = s.readings;
+  run.unusable_readings = s.unusable_readings;
+  if (stats) *stats = s;
+  return run;
+}
+
+}  // namespace intgrid::slam

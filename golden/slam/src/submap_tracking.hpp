@@ -1,0 +1,152 @@
+// The front end of GraphSlam, its per-scan path: a pose in the local frame that follows the
+// odometry and is matched against the older of two active submaps, and scans fused into both.
+// Integers only (mm, angle units, index sums); included by submap_tracking_integer.cpp, built
+// without floating-point registers, and submap_tracking_double.cpp.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <utility>
+#include <vector>
+
+#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/local_grid.hpp"
+#include "intgrid/slam/scan_matching.hpp"
+
+namespace intgrid::slam {
+
+// GraphSlamConfig in the per-scan path's units, made by the back end.
+struct TrackerSetup {
+  std::int32_t cell_mm = 50;
+  std::int32_t max_range_mm = 30000;
+  SlamSensor sensor;
+  std::vector<std::int32_t> sin_q16;
+  int max_index = 127;
+  SearchWindow narrow, wide;                  // their priors at no motion
+  std::int64_t prior_xy_per_mm_q16 = 0;       // prior (mm) per mm of odometry translation, Q16
+  std::int64_t prior_theta_per_unit_q16 = 0;  // prior (units) per unit of rotation, Q16
+  std::int64_t wide_below_permille = 300;
+  int min_hits = 20;
+  int submap_scans = 90;
+  std::int64_t filter_mm = 100;
+  std::int64_t filter_units = 364;
+  std::int64_t filter_ms = 5000;
+};
+
+template <class Cell>
+struct Submap {
+  std::size_t id = 0;
+  LocalGrid<Cell> grid;  // in the local frame
+  SlamPose anchor;       // its first node's position, heading 0: the submap's frame
+  int insertions = 0;
+};
+
+struct TrackStep {
+  SlamPose pose;  // local frame
+  bool matched = false;
+  bool wide = false;
+  bool node = false;                 // fused into the active submaps
+  std::int64_t score_permille = 0;   // the narrow match's, of every hit on the strongest cell
+  std::vector<std::size_t> submaps;  // the ids it was fused into
+};
+
+template <class Cell>
+class LocalTracker {
+ public:
+  LocalTracker(TrackerSetup setup, core::IsmTable<Cell> table)
+      : setup_(std::move(setup)), table_(std::move(table)) {}
+
+  const TrackerSetup& setup() const { return setup_; }
+  core::IntegerRays rays() const { return {setup_.sin_q16, setup_.cell_mm}; }
+  const ScanPoints& points() const { return points_; }
+
+  TrackStep track(const QuantizedScan& scan, std::int64_t t_ms);
+
+  // Submaps that took all their scans, in order, handed over once.
+  std::vector<Submap<Cell>> take_finished() { return std::exchange(finished_, {}); }
+
+ private:
+  TrackerSetup setup_;
+  core::IsmTable<Cell> table_;
+  std::deque<Submap<Cell>> active_;
+  std::vector<Submap<Cell>> finished_;
+  std::size_t next_id_ = 0;
+  SlamPose pose_, node_pose_;
+  std::int64_t node_ms_ = 0;
+  bool started_ = false;
+  ScanPoints points_;
+};
+
+template <class Cell>
+TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, std::int64_t t_ms) {
+  const core::IntegerRays rays = this->rays();
+  TrackStep step;
+  // Motion: the odometry increment, turned into the local frame.
+  const auto [mx, my] =
+      rays.rotate(static_cast<std::int32_t>(pose_.theta), scan.odom_dx_mm, scan.odom_dy_mm);
+  const SlamPose predicted{pose_.x_mm + mx, pose_.y_mm + my, pose_.theta + scan.odom_dtheta};
+  pose_ = predicted;
+
+  // Localization against the older active submap.
+  points_ = scan_points(rays, setup_.sensor, scan.range_mm, setup_.max_range_mm);
+  const std::int64_t full = static_cast<std::int64_t>(points_.size()) * setup_.max_index;
+  if (!active_.empty() && static_cast<int>(points_.size()) >= setup_.min_hits) {
+    const LocalGrid<Cell>& target = active_.front().grid;
+    // The prior widens with the increment: odometry errs in proportion to the motion.
+    const std::int64_t dx = scan.odom_dx_mm, dy = scan.odom_dy_mm;
+    const std::int64_t translation = core::ray_detail::isqrt(dx * dx + dy * dy);
+    const std::int64_t rotation =
+        scan.odom_dtheta < 0 ? -std::int64_t{scan.odom_dtheta} : std::int64_t{scan.odom_dtheta};
+    SearchWindow narrow = setup_.narrow, wide = setup_.wide;
+    for (SearchWindow* w : {&narrow, &wide}) {
+      if (w->prior_xy_mm > 0) w->prior_xy_mm += (setup_.prior_xy_per_mm_q16 * translation) >> 16;
+      if (w->prior_theta_units > 0)
+        w->prior_theta_units += (setup_.prior_theta_per_unit_q16 * rotation) >> 16;
+    }
+    Match<Cell> best = match_exhaustive(target, rays, points_, predicted, narrow, setup_.max_index,
+                                        MatchScore<Cell>{});
+    step.score_permille = static_cast<std::int64_t>(best.evidence * 1000 / MatchScore<Cell>(full));
+    if (step.score_permille < setup_.wide_below_permille) {
+      step.wide = true;
+      const Match<Cell> wider = match_exhaustive(target, rays, points_, predicted, wide,
+                                                 setup_.max_index, MatchScore<Cell>{});
+      if (wider.score > best.score) best = wider;
+    }
+    const SearchWindow& window = step.wide ? wide : narrow;
+    pose_ = refine_match(target, rays, points_, predicted, window, setup_.max_index, best).pose;
+    step.matched = true;
+  }
+  step.pose = pose_;
+
+  // Mapping: a node once the pose moved far enough from the last one.
+  const std::int64_t dx = pose_.x_mm - node_pose_.x_mm, dy = pose_.y_mm - node_pose_.y_mm;
+  const std::int64_t dt = pose_.theta - node_pose_.theta;
+  const bool moved = !started_ || dx * dx + dy * dy > setup_.filter_mm * setup_.filter_mm ||
+                     dt > setup_.filter_units || -dt > setup_.filter_units ||
+                     t_ms - node_ms_ > setup_.filter_ms;
+  if (!moved || points_.size() == 0) return step;
+  started_ = true;
+  node_pose_ = pose_;
+  node_ms_ = t_ms;
+  step.node = true;
+  if (active_.empty() || active_.back().insertions >= setup_.submap_scans) {
+    active_.push_back(
+        {next_id_++, LocalGrid<Cell>(setup_.cell_mm), {pose_.x_mm, pose_.y_mm, 0}, 0});
+  }
+  const auto [sx, sy] = rays.rotate(static_cast<std::int32_t>(pose_.theta),
+                                    setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
+  const auto heading = static_cast<std::int32_t>(pose_.theta + setup_.sensor.mount_theta);
+  for (Submap<Cell>& s : active_) {
+    s.grid.insert(rays, table_, pose_.x_mm + sx, pose_.y_mm + sy, heading, setup_.sensor.bearing,
+                  scan.range_mm, setup_.max_range_mm, setup_.max_index);
+    ++s.insertions;
+    step.submaps.push_back(s.id);
+  }
+  if (active_.front().insertions >= 2 * setup_.submap_scans) {
+    finished_.push_back(std::move(active_.front()));
+    active_.pop_front();
+  }
+  return step;
+}
+
+}  // namespace intgrid::slam
