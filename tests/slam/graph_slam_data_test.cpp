@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "intgrid/io/log_io.hpp"
 #include "intgrid/io/relations_io.hpp"
@@ -35,6 +36,13 @@ Segment run_segment(const std::string& name, std::size_t scans) {
       run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::integer).trajectory, relations);
   s.slam_double = score_relations(
       run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::floating).trajectory, relations);
+  // The figures docs/results.md quotes for the segment.
+  std::printf(
+      "%s, first %zu scans: odometry %.3f m %.2f deg, integer %.3f m %.2f deg, double %.3f m %.2f "
+      "deg\n",
+      name.c_str(), log.scans.size(), s.odometry.trans_mean, s.odometry.rot_mean_deg,
+      s.slam_int.trans_mean, s.slam_int.rot_mean_deg, s.slam_double.trans_mean,
+      s.slam_double.rot_mean_deg);
   return s;
 }
 
@@ -43,8 +51,8 @@ bool present(const std::string& name) {
          std::filesystem::exists(test::benchmark_dir() / (name + ".relations"));
 }
 
-// Intel's odometry slips by degrees: 0.21 m and 3.9 degrees on this segment; the SLAM 0.044 m
-// and 0.43 degree (integer), 0.049 m and 0.47 degree (double).
+// Intel's odometry slips by degrees: 0.21 m and 3.9 degrees on this segment; the SLAM 0.064 m
+// and 0.34 degree (integer), 0.061 m and 0.30 degree (double).
 TEST(GraphSlamBenchmark, IntelSegmentBeatsTheOdometryFarInBothArithmetics) {
   if (!present("intel")) GTEST_SKIP() << test::absent(test::benchmark_dir() / "intel.clf");
   const Segment s = run_segment("intel", 2000);
@@ -61,7 +69,7 @@ TEST(GraphSlamBenchmark, IntelSegmentBeatsTheOdometryFarInBothArithmetics) {
 }
 
 // ACES's odometry is good locally (0.030 m, 0.74 degree on this segment): the SLAM's translation
-// is no better there (0.036 m), its rotation is (0.50 degree).
+// is no better there (0.049 m), its rotation is (0.34 degree).
 TEST(GraphSlamBenchmark, AcesSegmentKeepsTheOdometrysTranslationAndImprovesItsRotation) {
   if (!present("aces")) GTEST_SKIP() << test::absent(test::benchmark_dir() / "aces.clf");
   const Segment s = run_segment("aces", 2000);

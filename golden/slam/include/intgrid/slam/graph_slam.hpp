@@ -43,7 +43,7 @@ struct GraphSlamConfig {
   } map;
 
   struct Submaps {
-    int scans = 90;  // nodes a submap takes before the next starts; each takes twice as many
+    int scans = 45;  // nodes a submap takes before the next starts; each takes twice as many
   } submaps;
 
   // A scan becomes a node (mapping event) once the pose moved this far since the last node.
@@ -68,7 +68,7 @@ struct GraphSlamConfig {
     double prior_xy = 0.15;
     double prior_xy_per_m = 0.0;
     double prior_degrees = 5.0;
-    double prior_degrees_per_degree = 0.0;
+    double prior_degrees_per_degree = 1.0;
     int min_hits = 20;  // scans with fewer hits follow the odometry
   } tracking;
 
@@ -79,7 +79,7 @@ struct GraphSlamConfig {
     int submaps = 4;           // of them, the nearest searched
     double window = 5.0;       // m, +- around the estimate
     double window_degrees = 25;
-    double min_score = 0.55;  // fraction of every hit on the strongest cell
+    double min_score = 0.45;  // fraction of every hit on the strongest cell
     double sigma_xy = 0.03;   // m, the closure's spread in the graph
     double sigma_degrees = 0.3;
   } loops;

@@ -93,12 +93,17 @@ class LocalGrid {
               std::int64_t sy, std::int32_t heading, std::span<const std::int32_t> bearing,
               std::span<const std::int32_t> range_mm, std::int32_t max_range_mm, int max_index) {
     const std::int64_t c = cell_mm_;
-    std::int32_t longest = 0;
+    // A reading's ISM reaches past its range (the beam's spread behind the hit): the walk's
+    // length is the table's cell count, so that count bounds the cells touched.
+    std::size_t longest = 0;
     for (const std::int32_t z : range_mm)
-      if (z > 0 && z < max_range_mm) longest = std::max(longest, z);
+      if (z > 0 && z < max_range_mm) longest = std::max(longest, table.reading(z).size());
     const int cx = static_cast<int>(core::ray_detail::floor_div(sx + c / 2, c));
     const int cy = static_cast<int>(core::ray_detail::floor_div(sy + c / 2, c));
-    const int reach = static_cast<int>((std::int64_t{longest} + 2 * c) / c) + 2;
+    // The walk stops once a cell centre's projection passes (longest + 1/2) c from the sensor,
+    // which lies within half a cell of cell (cx, cy)'s centre: a cell's centre is then within
+    // (longest + 1/2) c + c / sqrt(2) + c / sqrt(2) of it.
+    const int reach = static_cast<int>(longest) + 3;
     cover(cx - reach, cy - reach, cx + reach, cy + reach);
     // Every cell lies inside once covered: no bounds check per cell.
     Cell* origin = cells_.data() + (static_cast<std::ptrdiff_t>(cy - y0_) * width_ + (cx - x0_));
