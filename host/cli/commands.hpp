@@ -31,6 +31,7 @@ CLI::Option* add_global_method_option(CLI::App& cmd, localization::GlobalMethod&
 // GlobalLocConfig's fields as check_global_loc_config and LocalizationMap name them -> the flags
 // of add_global_loc_options.
 const FieldFlags& global_loc_flags();
+const FieldFlags& pose_search_flags();  // PoseSearchOptions field -> globloc flag
 // Throws OptionError for what add_global_loc_options' validators cannot see alone (--veto-levels
 // above --levels), then runs check_global_loc_config with its fields named as flags.
 void check_global_loc_options(const localization::GlobalLocConfig& config);

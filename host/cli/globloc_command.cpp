@@ -1,6 +1,7 @@
 // `intgrid globloc`: global localization of a log's scans in a known map, each from no prior.
 #include <map>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,9 +22,21 @@ CLI::Option* add_global_method_option(CLI::App& cmd, localization::GlobalMethod&
 }
 
 const FieldFlags& global_loc_flags() {
-  static const FieldFlags flags = {{"pose_res", "--pose-cell"}, {"headings", "--headings"},
-                                   {"sigma", "--sigma"},        {"max_range", "--max-range"},
-                                   {"seps_levels", "--levels"}, {"veto_levels", "--veto-levels"}};
+  static const FieldFlags flags = {{"pose_res", "--pose-cell"},
+                                   {"headings", "--headings"},
+                                   {"sigma", "--sigma"},
+                                   {"max_range", "--max-range"},
+                                   {"seps_levels", "--levels"},
+                                   {"veto_levels", "--veto-levels"},
+                                   {"memory_limit", "--max-memory"}};
+  return flags;
+}
+
+const FieldFlags& pose_search_flags() {
+  static const FieldFlags flags = {{"hypotheses", "--hypotheses"},
+                                   {"verified", "--verified"},
+                                   {"ambiguity_levels", "--ambiguity-levels"},
+                                   {"threads", "--threads"}};
   return flags;
 }
 
@@ -56,6 +69,12 @@ void add_global_loc_options(CLI::App& cmd, localization::GlobalLocConfig& c) {
                  "bound)")
       ->transform(whole_range(0, core::max_index_for_bits(c.seps_bits)))
       ->capture_default_str();
+  cmd.add_option_function<double>(
+         "--max-memory", [&c](double mb) { c.memory_limit = static_cast<std::size_t>(mb * 1e6); },
+         "the most the map's pose-grid tables and one localization's scores may take (MB): a "
+         "larger pose grid is refused before it is allocated")
+      ->check(real_range(1.0, 1e9))
+      ->default_str(std::to_string(c.memory_limit / 1000000));
 }
 
 void add_globloc_command(CLI::App& app) {
@@ -64,9 +83,10 @@ void add_globloc_command(CLI::App& app) {
       "globloc",
       "global localization: each scan of a log on its own in a known map, from no prior");
   cmd->footer(
-      "Thesis chapter 4. Writes DIR/poses.txt (t x y theta score), pose_grid.png (the first "
-      "scan's pose grid, max over headings, estimate marked) and metrics.json (with --reference: "
-      "the share of scans within 0.5 m and 15 degrees of the reference pose).");
+      "Thesis chapter 4. Writes DIR/poses.txt (t x y theta score ambiguous, then x y theta score "
+      "of each further hypothesis), pose_grid.png (the first "
+      "scan's pose grid, max over headings, estimate marked) and metrics.json (with a reference: "
+      "the share of scans within --tolerance of the reference pose, and the misses).");
   cmd->add_option("--map", o->map, "the known map (ROS map_server YAML)")->required();
   cmd->add_option("--log", o->log, "log file (project format or CARMEN)")->required();
   cmd->add_option("--out", o->out, "output folder: poses.txt, pose_grid.png, metrics.json")
@@ -77,14 +97,52 @@ void add_globloc_command(CLI::App& app) {
   cmd->add_option("--every", o->every, "localize every N-th of the selected scans")
       ->transform(whole_range(1, 1'000'000))
       ->capture_default_str();
-  cmd->add_option("--beams", o->beams, "readings a scan, spread evenly over it (0: all)")
+  cmd->add_option("--beams", o->beams,
+                  "readings a scan that score every pose cell, spread evenly over it (0: all)")
       ->transform(whole_range(0, 100'000))
+      ->capture_default_str();
+  cmd->add_option("--verify-beams", o->verify_beams,
+                  "pog: readings a scan that rescore the best hypotheses (0: all, the whole scan)")
+      ->transform(whole_range(0, 100'000))
+      ->capture_default_str();
+  cmd->add_option("--hypotheses", o->search.hypotheses,
+                  "pog: the K best hypotheses, written after the estimate in poses.txt")
+      ->transform(whole_range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--verified", o->search.verified,
+                  "pog: the best hypotheses of the screening that the verification rescores")
+      ->transform(whole_range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--ambiguity-levels", o->search.ambiguity_levels,
+                  "pog: a scan is ambiguous when a second hypothesis (1 m or 30 degrees away) "
+                  "scores within this many S_eps levels a verification reading of the best")
+      ->check(non_negative())
+      ->capture_default_str();
+  o->search.threads = 0;
+  cmd->add_option("--threads", o->search.threads,
+                  "pog: threads scoring one scan's pose grid (0: every core); the same result "
+                  "for any count")
+      ->transform(whole_range(0, 256))
       ->capture_default_str();
   add_global_method_option(*cmd, o->method);
   add_global_loc_options(*cmd, o->config);
   cmd->add_option("--reference", o->reference,
-                  "reference log: the share of scans within 0.5 m and 15 degrees of its pose at "
-                  "the same time, in metrics.json");
+                  "reference log: the share of scans within the tolerance of its pose at the "
+                  "same time, in metrics.json");
+  cmd->add_option("--reference-trajectory", o->reference_trajectory,
+                  "reference poses as t x y theta lines (intgrid slam's trajectory.txt), instead "
+                  "of --reference");
+  cmd->add_option_function<std::vector<double>>(
+         "--tolerance",
+         [o](const std::vector<double>& v) {
+           o->position_tolerance = v[0];
+           o->heading_tolerance = v[1] * std::numbers::pi / 180.0;
+         },
+         "a scan is found within METRES and DEGREES of its reference pose")
+      ->expected(2)
+      ->type_name("METRES DEGREES")
+      ->check(positive())
+      ->default_str("0.5 15");
   cmd->callback([o] {
     const GlobLocJobResult r = run_globloc_job(*o);
     print_json(r.metrics);

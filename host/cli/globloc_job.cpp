@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string_view>
+#include <thread>
 
 #include "cli/commands.hpp"
 #include "cli/options.hpp"
@@ -19,6 +20,7 @@
 #include "intgrid/io/input_error.hpp"
 #include "intgrid/io/log_io.hpp"
 #include "intgrid/io/map_io.hpp"
+#include "intgrid/io/relations_io.hpp"
 #include "intgrid/io/text_io.hpp"
 
 namespace intgrid::cli {
@@ -77,28 +79,40 @@ void check_map(const io::RosMap& map, const std::filesystem::path& file,
                              io::format_number(map.grid.geometry.resolution) + " m");
 }
 
-// The reference pose at time t, if the reference log has a scan then.
-std::optional<core::Pose2> reference_at(const std::vector<core::Scan>& reference, double t) {
-  const auto it = std::lower_bound(reference.begin(), reference.end(), t - kTimeMatch,
-                                   [](const core::Scan& s, double time) { return s.t < time; });
-  if (it != reference.end() && std::abs(it->t - t) <= kTimeMatch) return it->robot;
+// The reference pose at time t, if the reference has one then.
+std::optional<core::Pose2> reference_at(const std::vector<slam::TimedPose>& reference, double t) {
+  const auto it =
+      std::lower_bound(reference.begin(), reference.end(), t - kTimeMatch,
+                       [](const slam::TimedPose& p, double time) { return p.t < time; });
+  if (it != reference.end() && std::abs(it->t - t) <= kTimeMatch) return it->pose;
   return std::nullopt;
 }
 
 void write_poses(const std::filesystem::path& file, const std::vector<GlobLocScan>& scans,
                  localization::GlobalMethod method) {
   io::write_file_atomically(file, [&](std::ostream& out) {
-    out << "# t x y theta score (s, m, m, rad, -): the robot pose of each localized scan, from no "
-           "prior, by "
+    const bool pose_grid = method == localization::GlobalMethod::pose_grid;
+    out << "# t x y theta score ambiguous (s, m, m, rad, -, 0/1): the robot pose of each localized "
+           "scan, from no prior, by "
         << global_method_name(method) << "; score: "
-        << (method == localization::GlobalMethod::pose_grid ? "the best cell's S_eps index sum"
-                                                            : "the best cell's posterior")
+        << (pose_grid ? "the best hypothesis's S_eps index sum over the whole scan; ambiguous: a "
+                        "second hypothesis nearly as good; then x y theta score of the next "
+                        "hypotheses (--hypotheses)"
+                      : "the best cell's posterior; ambiguous: 0 (the baselines do not tell)")
         << '\n';
+    const auto pose = [&](std::ostream& o, const core::Pose2& p, double score) {
+      o << io::format_number(p.x) << ' ' << io::format_number(p.y) << ' '
+        << io::format_number(p.theta) << ' ' << io::format_number(score);
+    };
     for (const GlobLocScan& s : scans) {
-      const core::Pose2& p = s.estimate.robot;
-      out << io::format_number(s.t) << ' ' << io::format_number(p.x) << ' '
-          << io::format_number(p.y) << ' ' << io::format_number(p.theta) << ' '
-          << io::format_number(s.estimate.score) << '\n';
+      out << io::format_number(s.t) << ' ';
+      pose(out, s.estimate.robot, s.estimate.score);
+      out << ' ' << (s.ambiguous ? 1 : 0);
+      for (std::size_t h = 1; h < s.hypotheses.size(); ++h) {
+        out << ' ';
+        pose(out, s.hypotheses[h].robot, s.hypotheses[h].score);
+      }
+      out << '\n';
     }
   });
 }
@@ -230,13 +244,23 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   const io::RosMap map = io::read_ros_map(o.map);
   const core::Log log = io::read_log(o.log);
   if (log.scans.empty()) throw io::InputError(o.log, 0, "scans", "the log holds no scan");
-  std::optional<core::Log> reference;
+  if (o.reference && o.reference_trajectory)
+    bad_option("--reference-trajectory", "is given with --reference: one reference a run");
+  if (!(o.position_tolerance > 0.0) || !(o.heading_tolerance > 0.0))
+    bad_option("--tolerance", "must be positive");
+  std::optional<std::vector<slam::TimedPose>> reference;
+  const std::optional<std::filesystem::path>& reference_file =
+      o.reference ? o.reference : o.reference_trajectory;
   if (o.reference) {
-    reference = io::read_log(*o.reference);
-    if (reference->scans.empty())
+    const core::Log log_reference = io::read_log(*o.reference);
+    if (log_reference.scans.empty())
       throw io::InputError(*o.reference, 0, "scans", "the reference log holds no scan");
-    std::stable_sort(reference->scans.begin(), reference->scans.end(),
-                     [](const core::Scan& a, const core::Scan& b) { return a.t < b.t; });
+    reference.emplace();
+    for (const core::Scan& scan : log_reference.scans) reference->push_back({scan.t, scan.robot});
+    std::stable_sort(reference->begin(), reference->end(),
+                     [](const slam::TimedPose& a, const slam::TimedPose& b) { return a.t < b.t; });
+  } else if (o.reference_trajectory) {
+    reference = io::read_trajectory(*o.reference_trajectory);
   }
   const auto [first, last] = scan_range(o.scans, log.scans.size(), o.log);
   check_map(map, o.map, o.config);
@@ -244,7 +268,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   // The selected scans' readings, before any work on the map.
   struct Job {
     std::size_t index;
-    std::vector<localization::RangeReading> readings;
+    std::vector<localization::RangeReading> readings, verification;
   };
   std::vector<Job> jobs;
   GlobLocJobResult r;
@@ -254,7 +278,8 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
     if (readings.empty())
       ++r.skipped_scans;
     else
-      jobs.push_back({i, std::move(readings)});
+      jobs.push_back({i, std::move(readings),
+                      localization::readings_of(log.scans[i], o.verify_beams, o.config.max_range)});
   }
   if (jobs.empty())
     throw io::InputError(
@@ -263,13 +288,19 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         "the --max-range " +
             io::format_number(o.config.max_range) + " m maximum range)");
 
+  localization::PoseSearchOptions search = o.search;
+  if (search.threads == 0)
+    search.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+  naming_flags(pose_search_flags(), [&] { localization::check_pose_search_options(search); });
+
   const auto map_start = Clock::now();
   std::optional<localization::LocalizationMap> lmap;
   try {
     lmap.emplace(map.grid, map.occupied_thresh, map.free_thresh, o.config);
   } catch (const std::invalid_argument& e) {
     // The pose grid's options (a lattice too big for the map: --pose-cell), else the map's.
-    if (std::string_view(e.what()).starts_with("pose_res"))
+    if (std::string_view(e.what()).starts_with("pose_res") ||
+        std::string_view(e.what()).starts_with("memory_limit"))
       rethrow_naming_flags(e, global_loc_flags());
     throw io::InputError(o.map, 0, "image", e.what());
   }
@@ -285,19 +316,31 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
       s.t = scan.t;
       s.readings = jobs[n].readings.size();
       const auto start = Clock::now();
-      s.estimate = localization::localize_global(*lmap, jobs[n].readings, scan.sensor_mount,
-                                                 o.method, n == 0 ? &first_scores : nullptr);
+      localization::PoseScores* scores = n == 0 ? &first_scores : nullptr;
+      if (o.method == localization::GlobalMethod::pose_grid) {
+        localization::PoseSearchResult found = localization::search_pose_grid(
+            *lmap, jobs[n].readings, jobs[n].verification, scan.sensor_mount, search, scores);
+        s.estimate = found.estimate;
+        s.hypotheses = std::move(found.hypotheses);
+        s.ambiguous = found.ambiguous;
+        r.ambiguous += found.ambiguous ? 1 : 0;
+      } else {
+        s.estimate = naming_flags(global_loc_flags(), [&] {
+          return localization::localize_global(*lmap, jobs[n].readings, scan.sensor_mount, o.method,
+                                               scores);
+        });
+      }
       s.seconds = seconds_since(start);
       r.seconds += s.seconds;
       if (reference) {
-        s.reference = reference_at(reference->scans, s.t);
+        s.reference = reference_at(*reference, s.t);
         if (s.reference) {
           ++r.matched;
           const double dx = s.estimate.robot.x - s.reference->x;
           const double dy = s.estimate.robot.y - s.reference->y;
-          s.found = std::hypot(dx, dy) <= kGlobLocPositionTolerance &&
+          s.found = std::hypot(dx, dy) <= o.position_tolerance &&
                     std::abs(core::wrap_angle(s.estimate.robot.theta - s.reference->theta)) <=
-                        kGlobLocHeadingTolerance;
+                        o.heading_tolerance;
           r.found += s.found ? 1 : 0;
         }
       }
@@ -323,15 +366,25 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         {"seps_levels", c.seps_levels},
         {"veto_levels", c.veto_levels},
         {"scans", std::to_string(first) + ":" + std::to_string(last)},
-        {"every", o.every}}},
+        {"every", o.every},
+        {"verify_beams", o.verify_beams},
+        {"hypotheses", search.hypotheses},
+        {"verified", search.verified},
+        {"ambiguity_levels", search.ambiguity_levels},
+        {"threads", search.threads},
+        {"max_memory_mb", static_cast<double>(c.memory_limit) / 1e6}}},
       {"pose_grid",
        {{"width", lmap->width()},
         {"height", lmap->height()},
         {"headings", lmap->headings()},
         {"pose_cells", lmap->pose_cells()},
-        {"candidate_cells", lmap->candidate_cells()}}},
+        {"candidate_cells", lmap->candidate_cells()},
+        {"bytes_per_candidate_pose_cell",
+         localization::LocalizationMap::kBytesPerCandidatePoseCell},
+        {"memory_mb", static_cast<double>(lmap->memory_bytes()) / 1e6}}},
       {"scans", r.scans.size()},
       {"skipped_scans", r.skipped_scans},
+      {"ambiguous_scans", r.ambiguous},
       {"mean_readings", static_cast<double>(readings) / static_cast<double>(r.scans.size())},
       {"map_seconds", r.map_seconds},
       {"seconds", r.seconds},
@@ -344,9 +397,9 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
             std::hypot(s.estimate.robot.x - s.reference->x, s.estimate.robot.y - s.reference->y));
     std::sort(position_errors.begin(), position_errors.end());
     nlohmann::json ref = {
-        {"file", o.reference->string()},
-        {"position_tolerance_m", kGlobLocPositionTolerance},
-        {"heading_tolerance_deg", kGlobLocHeadingTolerance * 180.0 / std::numbers::pi},
+        {"file", reference_file->string()},
+        {"position_tolerance_m", o.position_tolerance},
+        {"heading_tolerance_deg", o.heading_tolerance * 180.0 / std::numbers::pi},
         {"matched", r.matched},
         {"within", r.found},
         {"share",
@@ -355,6 +408,25 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         {"median_position_error_m",
          position_errors.empty() ? nlohmann::json()
                                  : nlohmann::json(position_errors[position_errors.size() / 2])}};
+    // The scans not found, with what the pose grid said of them: a user checks whether the
+    // misses were flagged.
+    nlohmann::json misses = nlohmann::json::array();
+    for (const GlobLocScan& s : r.scans)
+      if (s.reference && !s.found)
+        misses.push_back({{"scan", s.index},
+                          {"t", s.t},
+                          {"position_error_m", std::hypot(s.estimate.robot.x - s.reference->x,
+                                                          s.estimate.robot.y - s.reference->y)},
+                          {"heading_error_deg",
+                           std::abs(core::wrap_angle(s.estimate.robot.theta - s.reference->theta)) *
+                               180.0 / std::numbers::pi},
+                          {"ambiguous", s.ambiguous}});
+    ref["misses"] = misses;
+    std::size_t ambiguous_matched = 0, ambiguous_found = 0;
+    for (const GlobLocScan& s : r.scans)
+      if (s.reference && s.ambiguous) ++ambiguous_matched, ambiguous_found += s.found ? 1 : 0;
+    ref["ambiguous_matched"] = ambiguous_matched;
+    ref["ambiguous_within"] = ambiguous_found;
     r.metrics["reference"] = ref;
   }
 

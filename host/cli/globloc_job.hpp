@@ -24,12 +24,17 @@ struct GlobLocJobOptions {
   std::filesystem::path map;
   std::filesystem::path log;
   std::filesystem::path out;
-  std::optional<std::filesystem::path> reference;
+  std::optional<std::filesystem::path> reference;             // a log: its scans' robot poses
+  std::optional<std::filesystem::path> reference_trajectory;  // t x y theta (slam's trajectory)
+  double position_tolerance = kGlobLocPositionTolerance;      // m: found within this
+  double heading_tolerance = kGlobLocHeadingTolerance;        // rad: and this
   std::string scans;      // "FIRST:LAST", 0-based and inclusive; empty: every scan
   std::size_t every = 1;  // of the selected scans, localize every every-th
-  int beams = 60;         // readings a scan, spread over it (0: all)
+  int beams = 60;         // screening readings a scan, spread over it (0: all)
+  int verify_beams = 0;   // the pose grid's verification readings a scan (0: all, the whole scan)
   localization::GlobalMethod method = localization::GlobalMethod::pose_grid;
   localization::GlobalLocConfig config;
+  localization::PoseSearchOptions search;  // threads: 0 is every core
   bool progress = true;
 };
 
@@ -38,6 +43,8 @@ struct GlobLocScan {
   double t = 0.0;
   std::size_t readings = 0;
   localization::GlobalEstimate estimate;
+  std::vector<localization::PoseHypothesis> hypotheses;  // the pose grid's, best first
+  bool ambiguous = false;  // the pose grid: a second hypothesis nearly as good
   double seconds = 0.0;
   std::optional<core::Pose2> reference;  // the reference log's pose at the same time
   bool found = false;                    // within the tolerances of the reference pose
@@ -50,6 +57,7 @@ struct GlobLocJobResult {
   double seconds = 0.0;            // localizing, all scans
   std::size_t matched = 0;         // scans with a reference pose
   std::size_t found = 0;           // of those, within the tolerances
+  std::size_t ambiguous = 0;       // scans whose answer is ambiguous
   nlohmann::json metrics;          // what metrics.json holds
 };
 

@@ -15,6 +15,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -872,6 +873,60 @@ TEST_F(Cli, GlobLocWritesPosesPictureAndMetricsAndScoresAgainstAReference) {
   EXPECT_NE(file_text(out / "metrics.json").find("\"share\": 1.0"), std::string::npos);
   for (const auto& entry : fs::directory_iterator(out))
     EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
+
+  // --hypotheses 3: each line adds the two next hypotheses (x y theta score) after the ambiguity
+  // flag, on any thread count the same file.
+  for (const char* threads : {"1", "3"}) {
+    const fs::path k3 = dir_ / (std::string("k3_") + threads);
+    const CliRun h = run("globloc --map " + room.string() + " --log " + (sim / "sim.log").string() +
+                         " --out " + k3.string() + " --scans 1:4 --pose-cell 0.1 --headings 64 " +
+                         "--beams 20 --hypotheses 3 --threads " + threads);
+    ASSERT_EQ(h.status, 0) << h.output;
+    const std::vector<std::string> k3_lines = lines_of(file_text(k3 / "poses.txt"));
+    ASSERT_EQ(k3_lines.size(), 5u);
+    for (std::size_t i = 1; i < k3_lines.size(); ++i) {
+      std::istringstream fields(k3_lines[i]);
+      std::vector<double> v;
+      for (double x = 0; fields >> x;) v.push_back(x);
+      ASSERT_EQ(v.size(), 14u) << k3_lines[i];
+      EXPECT_TRUE(v[5] == 0.0 || v[5] == 1.0) << k3_lines[i];
+      EXPECT_GE(v[4], v[9]) << k3_lines[i];  // best first
+      EXPECT_GE(v[9], v[13]) << k3_lines[i];
+    }
+  }
+  EXPECT_EQ(file_text(dir_ / "k3_1" / "poses.txt"), file_text(dir_ / "k3_3" / "poses.txt"));
+  // A trajectory as the reference (t x y theta, as slam writes it): the estimates themselves are
+  // found, at any tolerance; shifted by 0.2 m, not within 0.1 m.
+  std::string exact = "# t x y theta\n", shifted = exact;
+  const auto number = [](double v) {
+    std::ostringstream o;
+    o.precision(17);
+    o << v;
+    return o.str();
+  };
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    std::istringstream fields(lines[i]);
+    double t = 0, x = 0, y = 0, theta = 0;
+    fields >> t >> x >> y >> theta;
+    exact += number(t) + ' ' + number(x) + ' ' + number(y) + ' ' + number(theta) + '\n';
+    shifted += number(t) + ' ' + number(x + 0.2) + ' ' + number(y) + ' ' + number(theta) + '\n';
+  }
+  for (const auto& [name, text, within] :
+       {std::tuple{"exact.txt", exact, 4}, std::tuple{"shifted.txt", shifted, 0}}) {
+    const CliRun t =
+        run("globloc --map " + room.string() + " --log " + (sim / "sim.log").string() + " --out " +
+            (dir_ / "traj").string() + " --reference-trajectory " + write(name, text).string() +
+            " --scans 1:4 --pose-cell 0.1 --headings 64 --beams 90 --tolerance 0.1 1");
+    ASSERT_EQ(t.status, 0) << t.output;
+    EXPECT_NE(t.output.find("\"within\": " + std::to_string(within)), std::string::npos)
+        << name << t.output;
+  }
+  // A pose grid above --max-memory is refused, naming the option, before it is built.
+  const CliRun big =
+      run("globloc --map " + room.string() + " --log " + (sim / "sim.log").string() + " --out " +
+          (dir_ / "big").string() + " --pose-cell 0.1 --headings 4096 --max-memory 1");
+  EXPECT_EQ(big.status, 2) << big.output;
+  expect_error(big, "--max-memory: a pose grid of");
 
   // The baselines run too.
   for (const char* method : {"markov", "markov-mixture", "likelihood-field"}) {

@@ -95,6 +95,33 @@ TEST(RelationsIo, AFileWithoutRelationsOrAMissingFileIsAnError) {
                      0, "file");
 }
 
+TEST(TrajectoryIo, ReadsTheSlamTrajectoryAndNamesEveryBadField) {
+  const TempDir dir;
+  const auto good =
+      dir.write("trajectory.txt", "# t x y theta\n1.5 0.25 -3 0.1\n\n2 1e-3 4 -3.1\r\n");
+  const std::vector<slam::TimedPose> poses = io::read_trajectory(good);
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_EQ(poses[0].t, 1.5);
+  EXPECT_EQ(poses[0].pose.x, 0.25);
+  EXPECT_EQ(poses[1].pose.y, 4.0);
+  EXPECT_EQ(poses[1].pose.theta, -3.1);
+  const char* const names[] = {"t", "x", "y", "theta"};
+  for (std::size_t bad = 0; bad < 4; ++bad) {
+    std::string line;
+    for (std::size_t i = 0; i < 4; ++i) line += i == bad ? "nan " : "5 ";
+    const auto file = dir.write("bad.txt", "1 0 0 0\n" + line + "\n");
+    expect_input_error([&] { io::read_trajectory(file); }, file, 2, names[bad]);
+  }
+  auto file = dir.write("short.txt", "1 0 0\n");
+  expect_input_error([&] { io::read_trajectory(file); }, file, 1, "theta");
+  file = dir.write("long.txt", "1 0 0 0 7\n");
+  expect_input_error([&] { io::read_trajectory(file); }, file, 1, "theta");
+  file = dir.write("backwards.txt", "2 0 0 0\n1 0 0 0\n");
+  expect_input_error([&] { io::read_trajectory(file); }, file, 2, "t");
+  file = dir.write("empty.txt", "# nothing\n");
+  expect_input_error([&] { io::read_trajectory(file); }, file, 0, "poses");
+}
+
 TEST(TumTrajectory, WritesOneLinePerPoseThatReadsBackExactly) {
   const TempDir dir;
   const std::vector<slam::TimedPose> trajectory = {

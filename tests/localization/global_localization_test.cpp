@@ -16,6 +16,7 @@
 #include <memory>
 #include <numbers>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -284,19 +285,48 @@ TEST(GlobalLocalization, LogOddsClaimsAndTheirDenseFormRoundToTheIntegerOnes) {
 // ---------------------------------------------------------------------------------------------
 // Dense and walk forms
 
-// Applies the readings both ways from one random start; returns whether they changed it.
+// Applies the readings the three ways from one random start (the candidate form in a random split
+// of the headings, as threads share it); returns whether they changed it.
 bool expect_forms_agree(const LocalizationMap& lmap, const std::vector<RangeReading>& readings,
                         SimRandom& random) {
   std::vector<std::int32_t> dense(lmap.pose_cells()), walk;
   for (auto& v : dense) v = static_cast<std::int32_t>(random.below(2001)) - 1000;
   walk = dense;
   const std::vector<std::int32_t> start = dense;
+  const std::span<const std::uint32_t> candidates = lmap.candidates();
+  const std::size_t n = candidates.size(), w = std::size_t(lmap.width());
+  const auto layout_index = [&](std::size_t c, int k) {
+    return lmap.index(int(candidates[c] % w), int(candidates[c] / w), k);
+  };
+  std::vector<std::int32_t> compact(n * std::size_t(lmap.headings()));
+  for (int k = 0; k < lmap.headings(); ++k)
+    for (std::size_t c = 0; c < n; ++c) compact[std::size_t(k) * n + c] = start[layout_index(c, k)];
+  std::vector<ReadingClaims> all;
   for (const RangeReading& r : readings) {
     const ReadingClaims claims = lmap.claims(r);
     lmap.add_reading_dense(claims, dense);
     lmap.add_reading_walk(claims, walk);
+    all.push_back(claims);
   }
+  // Its own stream: the caller's draws the maps.
+  SimRandom split_random(n);
+  const int split = static_cast<int>(split_random.below(std::uint64_t(lmap.headings()) + 1));
+  lmap.add_readings_candidates(all, compact, split, lmap.headings());
+  lmap.add_readings_candidates(all, compact, 0, split);
   EXPECT_EQ(dense, walk);
+  std::size_t differing = 0;
+  for (int k = 0; k < lmap.headings(); ++k)
+    for (std::size_t c = 0; c < n; ++c) {
+      const std::size_t q = layout_index(c, k);
+      differing += compact[std::size_t(k) * n + c] != dense[q];
+      // claim_at is what the candidate form adds there.
+      if (c % 7 == 0) {
+        std::int32_t sum = start[q];
+        for (const ReadingClaims& claims : all) sum += lmap.claim_at(claims, c, k);
+        EXPECT_EQ(sum, dense[q]);
+      }
+    }
+  EXPECT_EQ(differing, 0u);
   return dense != start;
 }
 
@@ -462,7 +492,7 @@ TEST(GlobalLocalization, ContaminationPoseGridHoldsGaussianMarkovAndLikelihoodFi
 // ---------------------------------------------------------------------------------------------
 // Ties
 
-TEST(GlobalLocalization, TiesGiveTheMeanOfTheTiedCells) {
+TEST(GlobalLocalization, TiesBecomeHypothesesEachTheMeanOfItsTiedNeighbours) {
   // A corridor along x: a wall at row 0, free rows 1..3, unknown above, open ends.
   ProbabilityGrid map(GridGeometry{30, 5, 0.1, 0.0, 0.0}, 0.0);
   for (int i = 0; i < 30; ++i) {
@@ -470,33 +500,37 @@ TEST(GlobalLocalization, TiesGiveTheMeanOfTheTiedCells) {
     map.at(i, 4) = 0.5;
   }
   const LocalizationMap lmap(map, 0.65, 0.196, small_config(0.1, 16));
-  // Straight down from heading 0, two steps. By the corridor's mirror symmetry about x = 1.5 the
-  // best cells come in mirrored pairs (a cell facing +x, or a pair turned +-k bins reading along
-  // diagonal lines, whose longer steps give stronger claims): the mean lies on x = 1.5, heading 0.
+  // Straight down from heading 0, two steps: every cell of row 2 facing +x fits (and pairs turned
+  // +-k bins reading along diagonal lines, whose longer steps give stronger claims).
   const std::vector<RangeReading> readings{{0.2, -kPi / 2}};
   PoseScores scores;
   const GlobalEstimate e =
       localize_global(lmap, readings, Pose2{}, GlobalMethod::pose_grid, &scores);
-  // The oracle: the tied cells and their mean, from the scores.
+  // The oracle, from the scores: the first best cell in the candidate layout (heading, then
+  // row, then column), and the cells tied with it one cell and one bin around.
   const std::int32_t best = *std::max_element(scores.index_sum.begin(), scores.index_sum.end());
+  std::array<int, 3> first{-1, -1, -1};
+  for (int k = 0; k < 16 && first[0] < 0; ++k)
+    for (int j = 0; j < 5 && first[0] < 0; ++j)
+      for (int i = 0; i < 30 && first[0] < 0; ++i)
+        if (scores.index_sum[lmap.index(i, j, k)] == best) first = {i, j, k};
   double sx = 0, sy = 0, sc = 0, ss = 0;
   std::size_t ties = 0;
-  for (int k = 0; k < 16; ++k)
-    for (int j = 0; j < 5; ++j)
-      for (int i = 0; i < 30; ++i)
-        if (scores.index_sum[lmap.index(i, j, k)] == best) {
-          const Pose2 p = lmap.pose_of(i, j, k);
-          sx += p.x, sy += p.y, sc += std::cos(p.theta), ss += std::sin(p.theta), ++ties;
-        }
+  for (int dk = -1; dk <= 1; ++dk)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int i = first[0] + di, j = first[1] + dj, k = (first[2] + dk + 16) % 16;
+        if (i < 0 || j < 0 || i >= 30 || j >= 5) continue;
+        if (scores.index_sum[lmap.index(i, j, k)] != best) continue;
+        const Pose2 p = lmap.pose_of(i, j, k);
+        sx += p.x, sy += p.y, sc += std::cos(p.theta), ss += std::sin(p.theta), ++ties;
+      }
   EXPECT_EQ(e.score, best);
   EXPECT_GT(best, 0);
   EXPECT_EQ(e.ties, ties);
-  EXPECT_GE(ties, 2u);
   EXPECT_NEAR(e.sensor.x, sx / double(ties), 1e-9);
   EXPECT_NEAR(e.sensor.y, sy / double(ties), 1e-9);
   EXPECT_NEAR(e.sensor.theta, std::atan2(ss, sc), 1e-9);
-  EXPECT_NEAR(e.sensor.x, 1.5, 1e-9);
-  EXPECT_NEAR(e.sensor.theta, 0.0, 1e-9);
   // Facing +x the reading points down: row 2 (two steps, 0.2 m) is claimed, above rows 1 and 3.
   EXPECT_GT(scores.index_sum[lmap.index(10, 2, 0)], 0);
   EXPECT_GT(scores.index_sum[lmap.index(10, 2, 0)], scores.index_sum[lmap.index(10, 1, 0)]);
@@ -504,6 +538,22 @@ TEST(GlobalLocalization, TiesGiveTheMeanOfTheTiedCells) {
   // Non-candidates hold INT32_MIN.
   EXPECT_EQ(scores.index_sum[lmap.index(0, 0, 0)], std::numeric_limits<std::int32_t>::min());
   EXPECT_EQ(scores.index_sum[lmap.index(0, 4, 3)], std::numeric_limits<std::int32_t>::min());
+
+  // The corridor's 3 m hold tied places 1 m apart: reported as hypotheses, the answer ambiguous.
+  PoseSearchOptions options;
+  options.hypotheses = 3;
+  const PoseSearchResult found = search_pose_grid(lmap, readings, readings, Pose2{}, options);
+  ASSERT_EQ(found.hypotheses.size(), 3u);
+  EXPECT_TRUE(found.ambiguous);
+  for (std::size_t a = 0; a < 3; ++a) {
+    EXPECT_EQ(found.hypotheses[a].score, best);
+    for (std::size_t b = 0; b < a; ++b) {
+      const Pose2 &p = found.hypotheses[a].sensor, &q = found.hypotheses[b].sensor;
+      // Seeds are separated; each hypothesis is a mean within one cell of its seed.
+      EXPECT_TRUE(std::hypot(p.x - q.x, p.y - q.y) >= 1.0 - 0.2 ||
+                  std::abs(wrap_angle(p.theta - q.theta)) >= 0.5236 - 2 * lmap.heading_bin());
+    }
+  }
 
   // With no readings every candidate ties: the baselines' uniform prior, the mean of the free
   // cells' centres (rows 1..3), score 1 / candidates.
@@ -513,6 +563,136 @@ TEST(GlobalLocalization, TiesGiveTheMeanOfTheTiedCells) {
   EXPECT_NEAR(u.score, 1.0 / (30 * 3 * 16), 1e-15);
   EXPECT_NEAR(u.sensor.x, 1.5, 1e-9);
   EXPECT_NEAR(u.sensor.y, 0.25, 1e-9);
+}
+
+// A 6 x 4 m room at 5 cm with two blocks, symmetric under a half turn about its centre, and
+// optionally a third block that breaks the symmetry.
+ProbabilityGrid half_turn_room(bool broken) {
+  ProbabilityGrid g(GridGeometry{120, 80, 0.05, 0.0, 0.0}, 0.0);
+  const auto block = [&](double x0, double y0, double x1, double y1) {
+    for (int j = 0; j < 80; ++j)
+      for (int i = 0; i < 120; ++i) {
+        const double x = (i + 0.5) * 0.05, y = (j + 0.5) * 0.05;
+        if (x >= x0 && x < x1 && y >= y0 && y < y1) g.at(i, j) = 1.0;
+      }
+  };
+  block(0.0, 0.0, 6.0, 0.1), block(0.0, 3.9, 6.0, 4.0), block(0.0, 0.0, 0.1, 4.0);
+  block(5.9, 0.0, 6.0, 4.0);
+  block(1.0, 0.8, 1.6, 1.2), block(4.4, 2.8, 5.0, 3.2);  // (x, y) -> (6 - x, 4 - y)
+  if (broken) block(4.2, 0.4, 4.6, 0.8);
+  return g;
+}
+
+TEST(GlobalLocalization, AmbiguousWhenThePlaceHasATwinAndNotWhenTheTwinDiffers) {
+  const Pose2 truth{1.5, 2.8, 0.3}, twin{4.5, 1.2, wrap_angle(0.3 + kPi)};
+  GlobalLocConfig config = small_config(0.1, 64);
+  config.max_range = 8.0;
+  PoseSearchOptions options;
+  options.hypotheses = 2;
+  for (const bool broken : {false, true}) {
+    SCOPED_TRACE(broken ? "broken symmetry" : "half-turn symmetry");
+    const ProbabilityGrid room = half_turn_room(broken);
+    const LocalizationMap lmap(room, 0.65, 0.196, config);
+    const Scan scan = simulate_scan(room, lidar_sensor(90, 2.0 * kPi, 8.0),
+                                    RangeNoiseConfig{0.01, 0.0, 0.0}, truth, 7);
+    const std::vector<RangeReading> readings = readings_of(scan, 0, config.max_range);
+    const PoseSearchResult r = search_pose_grid(lmap, readings, readings, Pose2{}, options);
+    ASSERT_EQ(r.hypotheses.size(), 2u);
+    const auto near = [](const Pose2& a, const Pose2& b) {
+      return std::hypot(a.x - b.x, a.y - b.y) <= 0.3 &&
+             std::abs(wrap_angle(a.theta - b.theta)) <= 0.2;
+    };
+    const Pose2 &first = r.hypotheses[0].robot, &second = r.hypotheses[1].robot;
+    std::printf("[globloc] %s: scores %d and %d over %zu readings, ambiguous %d\n",
+                broken ? "broken" : "symmetric", r.hypotheses[0].score, r.hypotheses[1].score,
+                r.verification_readings, int(r.ambiguous));
+    if (broken) {
+      EXPECT_FALSE(r.ambiguous);
+      EXPECT_TRUE(near(first, truth));
+    } else {
+      EXPECT_TRUE(r.ambiguous);
+      EXPECT_TRUE((near(first, truth) && near(second, twin)) ||
+                  (near(first, twin) && near(second, truth)));
+    }
+  }
+}
+
+TEST(GlobalLocalization, SearchGivesTheSameResultForAnyThreadCount) {
+  const ProbabilityGrid world = procedural_floorplan(small_floor(), 3);
+  const LocalizationMap lmap(world, 0.65, 0.196, floor_config());
+  const Trial t = simulate_trial(world, lmap, Pose2{}, 0.2, 31);
+  const std::vector<RangeReading> screening(t.readings.begin(), t.readings.begin() + 20);
+  PoseSearchOptions options;
+  options.hypotheses = 5;
+  options.threads = 1;
+  PoseScores one_scores;
+  const PoseSearchResult one =
+      search_pose_grid(lmap, screening, t.readings, Pose2{}, options, &one_scores);
+  ASSERT_EQ(one.hypotheses.size(), 5u);
+  for (const int threads : {2, 3, 7, 64}) {
+    SCOPED_TRACE(threads);
+    options.threads = threads;
+    PoseScores scores;
+    const PoseSearchResult r =
+        search_pose_grid(lmap, screening, t.readings, Pose2{}, options, &scores);
+    EXPECT_EQ(scores.index_sum, one_scores.index_sum);
+    ASSERT_EQ(r.hypotheses.size(), one.hypotheses.size());
+    for (std::size_t h = 0; h < r.hypotheses.size(); ++h) {
+      EXPECT_EQ(r.hypotheses[h].score, one.hypotheses[h].score);
+      EXPECT_EQ(r.hypotheses[h].sensor.x, one.hypotheses[h].sensor.x);
+      EXPECT_EQ(r.hypotheses[h].sensor.y, one.hypotheses[h].sensor.y);
+      EXPECT_EQ(r.hypotheses[h].sensor.theta, one.hypotheses[h].sensor.theta);
+    }
+    EXPECT_EQ(r.ambiguous, one.ambiguous);
+  }
+  // The hypotheses' scores are the verification readings' index sums there (the dense form as
+  // the oracle), best first.
+  std::vector<std::int32_t> dense(lmap.pose_cells(), 0);
+  for (const RangeReading& r : t.readings) lmap.add_reading_dense(lmap.claims(r), dense);
+  for (std::size_t h = 0; h < one.hypotheses.size(); ++h) {
+    if (h > 0) {
+      EXPECT_LE(one.hypotheses[h].score, one.hypotheses[h - 1].score);
+    }
+    if (one.hypotheses[h].ties != 1) continue;  // a mean of cells, not one cell's pose
+    const Pose2 corner = lmap.pose_of(0, 0, 0);
+    const Pose2& p = one.hypotheses[h].sensor;
+    const int i = int(std::lround((p.x - corner.x) / lmap.config().pose_res));
+    const int j = int(std::lround((p.y - corner.y) / lmap.config().pose_res));
+    const int k = int(std::lround(wrap_angle(p.theta) / lmap.heading_bin()) + 48) % 48;
+    EXPECT_EQ(one.hypotheses[h].score, dense[lmap.index(i, j, k)]);
+  }
+}
+
+TEST(GlobalLocalization, APoseGridAboveTheMemoryLimitIsRefusedBeforeItIsBuilt) {
+  const ProbabilityGrid world = procedural_floorplan(small_floor(), 3);
+  GlobalLocConfig config = floor_config();
+  const LocalizationMap lmap(world, 0.65, 0.196, config);
+  // The estimate covers at least the first hits and sums of every candidate pose cell.
+  EXPECT_GE(lmap.memory_bytes(),
+            lmap.candidate_cells() * LocalizationMap::kBytesPerCandidatePoseCell);
+  EXPECT_LE(lmap.memory_bytes(),
+            2 * lmap.candidate_cells() * LocalizationMap::kBytesPerCandidatePoseCell +
+                world.cells.size() * 16);
+  config.memory_limit = lmap.memory_bytes();
+  EXPECT_NO_THROW(LocalizationMap(world, 0.65, 0.196, config));
+  config.memory_limit = lmap.memory_bytes() - 1;
+  const std::string m = message_of([&] { LocalizationMap(world, 0.65, 0.196, config); });
+  EXPECT_EQ(m.rfind("memory_limit: a pose grid of 44 x 36 cells x 48 heading bins", 0), 0u) << m;
+  // The baselines' two beliefs (8 bytes a candidate pose cell each) against the same limit, with
+  // headings enough that they outweigh the map's tables.
+  config.headings = 480;
+  config.memory_limit = std::size_t{1} << 30;
+  const std::size_t beliefs = 16 * LocalizationMap(world, 0.65, 0.196, config).candidate_cells();
+  ASSERT_LT(LocalizationMap(world, 0.65, 0.196, config).memory_bytes(), beliefs - 1);
+  config.memory_limit = beliefs;
+  const LocalizationMap roomy(world, 0.65, 0.196, config);
+  EXPECT_NO_THROW(MarkovLocalization(roomy, GlobalMethod::markov));
+  config.memory_limit = beliefs - 1;
+  const LocalizationMap tight(world, 0.65, 0.196, config);
+  EXPECT_EQ(message_of([&] {
+              MarkovLocalization(tight, GlobalMethod::markov);
+            }).rfind("memory_limit: Markov localization", 0),
+            0u);
 }
 
 TEST(GlobalLocalization, RobotPoseStepsBackByTheMount) {

@@ -12,6 +12,7 @@
 #include "intgrid/core/failure.hpp"
 #include "intgrid/core/map_distance.hpp"
 #include "intgrid/core/narrow_ism.hpp"
+#include "intgrid/core/parallel.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/core/sensor_model.hpp"
 
@@ -159,6 +160,35 @@ LocalizationMap::LocalizationMap(const core::ProbabilityGrid& map, double occupi
         "map: no free pose cell (every pose cell holds a map cell above " +
         std::to_string(free_threshold) + ")");
 
+  // What the tables and one scan's scores will take, checked before they are allocated: the
+  // first hits and index sums per candidate pose cell, the line offsets, at most one source per
+  // occupied cell and direction, the per-position indices, the distance transform.
+  const auto headings = std::size_t(config_.headings);
+  const std::size_t occupied_cells =
+      static_cast<std::size_t>(std::count(class_.begin(), class_.end(), PoseCellClass::occupied));
+  const double bytes = double(free_cells_) * double(headings) * double(kBytesPerCandidatePoseCell) +
+                       double(headings) * (double(std::max(width_, height_)) * 4.0 +
+                                           double(occupied_cells) * double(sizeof(Source))) +
+                       double(wh) * double(sizeof(std::int32_t)) + double(free_cells_) * 4.0 +
+                       double(g.size()) * double(sizeof(double));
+  if (bytes > double(config_.memory_limit))
+    core::fail<std::invalid_argument>(
+        "memory_limit: a pose grid of " + std::to_string(width_) + " x " + std::to_string(height_) +
+        " cells x " + std::to_string(headings) + " heading bins (" +
+        std::to_string(free_cells_ * headings) + " candidate pose cells, " +
+        std::to_string(kBytesPerCandidatePoseCell) + " bytes each) needs about " +
+        std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) + " MB, above the " +
+        std::to_string(config_.memory_limit / 1000000) +
+        " MB limit: a coarser pose cell or fewer headings");
+  memory_bytes_ = static_cast<std::size_t>(bytes);
+  candidate_of_.assign(wh, -1);
+  candidates_.reserve(free_cells_);
+  for (std::size_t xy = 0; xy < wh; ++xy)
+    if (class_[xy] == PoseCellClass::free) {
+      candidate_of_[xy] = static_cast<std::int32_t>(candidates_.size());
+      candidates_.push_back(static_cast<std::uint32_t>(xy));
+    }
+
   // Directions, their step groups, then their lines.
   directions_.resize(std::size_t(config_.headings));
   std::vector<long long> group_key;
@@ -199,8 +229,7 @@ void LocalizationMap::build_direction(int d) {
   for (int u = 0; u < major_len; ++u)
     dir.offset[std::size_t(u)] = static_cast<std::int32_t>((u * dir.slope + half) >> kSlopeBits);
   const auto [lo, hi] = std::minmax_element(dir.offset.begin(), dir.offset.end());
-  const std::size_t wh = std::size_t(width_) * std::size_t(height_);
-  dir.first_hit.assign(wh, kNoHit);
+  dir.first_hit.assign(candidates_.size(), kNoHit);
   dir.sources.clear();
 
   std::vector<std::size_t> cells;  // one line's xy cells in the rays' order
@@ -227,7 +256,7 @@ void LocalizationMap::build_direction(int d) {
       } else if (cls == PoseCellClass::occupied) {
         for (auto s = std::size_t(previous + 1); s < t; ++s)
           if (class_[cells[s]] == PoseCellClass::free)
-            dir.first_hit[cells[s]] = static_cast<std::uint16_t>(t - s);
+            dir.first_hit[std::size_t(candidate_of_[cells[s]])] = static_cast<std::uint16_t>(t - s);
         if (free_seen)
           dir.sources.push_back(
               {line, majors[t], static_cast<std::int32_t>(std::ptrdiff_t(t) - previous - 1)});
@@ -293,8 +322,8 @@ std::vector<std::array<int, 2>> LocalizationMap::line_through(int i, int j, int 
 }
 
 std::uint16_t LocalizationMap::first_hit_steps(int i, int j, int d) const {
-  return directions_.at(std::size_t(d))
-      .first_hit[std::size_t(j) * std::size_t(width_) + std::size_t(i)];
+  const std::int32_t c = candidate_index(i, j);
+  return c < 0 ? kNoHit : directions_.at(std::size_t(d)).first_hit[std::size_t(c)];
 }
 
 std::span<const std::uint16_t> LocalizationMap::first_hit_table(int d) const {
@@ -404,13 +433,43 @@ void LocalizationMap::add_reading_dense(const BasicReadingClaims<Score>& claims,
   const int headings = config_.headings;
   for (int k = 0; k < headings; ++k) {
     const auto d = std::size_t((k + claims.shift) % headings);
-    // Every step count past the table (and kNoHit, which non-candidates hold) reads the table's
-    // final 0: the loop has no branch to mispredict (2.1x faster at 10^6).
+    // Every step count past the table (and kNoHit) reads the table's final 0: the loop has no
+    // branch to mispredict (2.1x faster at 10^6).
     const Score* claim = claims.claim[d].data();
     const std::size_t past = claims.claim[d].size() - 1;
     const std::uint16_t* hit = directions_[d].first_hit.data();
     Score* out = pog.data() + std::size_t(k) * wh;
-    for (std::size_t q = 0; q < wh; ++q) out[q] += claim[std::min<std::size_t>(hit[q], past)];
+    for (std::size_t c = 0; c < candidates_.size(); ++c)
+      out[candidates_[c]] += claim[std::min<std::size_t>(hit[c], past)];
+  }
+}
+
+void LocalizationMap::add_readings_candidates(std::span<const ReadingClaims> claims,
+                                              std::span<std::int32_t> scores, int k_begin,
+                                              int k_end) const {
+  const std::size_t n = candidates_.size();
+  const int headings = config_.headings;
+  if (scores.size() != n * std::size_t(headings))
+    core::fail<std::invalid_argument>("scores: its size differs from the candidate pose cells'");
+  if (k_begin < 0 || k_end > headings || k_begin > k_end)
+    core::fail<std::invalid_argument>("headings: the range lies outside the pose grid's");
+  for (const ReadingClaims& c : claims) check_pog(*this, c, pose_cells());
+  // A tile's sums (16 KB) and first hits (8 KB a reading) stay in the first-level cache while
+  // every reading adds to it.
+  constexpr std::size_t kTile = 4096;
+  for (int k = k_begin; k < k_end; ++k) {
+    std::int32_t* out = scores.data() + std::size_t(k) * n;
+    for (std::size_t begin = 0; begin < n; begin += kTile) {
+      const std::size_t end = std::min(n, begin + kTile);
+      for (const ReadingClaims& r : claims) {
+        const auto d = std::size_t((k + r.shift) % headings);
+        const std::int32_t* claim = r.claim[d].data();
+        const std::size_t past = r.claim[d].size() - 1;
+        const std::uint16_t* hit = directions_[d].first_hit.data();
+        for (std::size_t c = begin; c < end; ++c)
+          out[c] += claim[std::min<std::size_t>(hit[c], past)];
+      }
+    }
   }
 }
 template void LocalizationMap::add_reading_dense<std::int32_t>(const ReadingClaims&,
@@ -450,13 +509,15 @@ MarkovLocalization::MarkovLocalization(const LocalizationMap& map, GlobalMethod 
     : map_(&map), method_(method) {
   if (method == GlobalMethod::pose_grid)
     core::fail<std::invalid_argument>("method: Markov localization needs a baseline method");
-  belief_.assign(map.pose_cells(), 0.0);
-  next_.assign(map.pose_cells(), 0.0);
-  const double prior = 1.0 / static_cast<double>(map.candidate_cells());
-  for (int k = 0; k < map.headings(); ++k)
-    for (int j = 0; j < map.height(); ++j)
-      for (int i = 0; i < map.width(); ++i)
-        if (map.is_candidate(i, j)) belief_[map.index(i, j, k)] = prior;
+  const double bytes = 2.0 * sizeof(double) * double(map.candidate_cells());
+  if (bytes > double(map.config().memory_limit))
+    core::fail<std::invalid_argument>(
+        "memory_limit: Markov localization's two beliefs over " +
+        std::to_string(map.candidate_cells()) + " candidate pose cells need about " +
+        std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) + " MB, above the " +
+        std::to_string(map.config().memory_limit / 1000000) + " MB limit");
+  belief_.assign(map.candidate_cells(), 1.0 / static_cast<double>(map.candidate_cells()));
+  next_.assign(map.candidate_cells(), 0.0);
 }
 
 bool MarkovLocalization::update(const RangeReading& reading) {
@@ -473,7 +534,8 @@ bool MarkovLocalization::update(const RangeReading& reading) {
   const double max_term = z >= c.max_range ? c.z_max : 0.0;
   const double short_density = c.lambda_short * std::exp(-c.lambda_short * z);
   const core::Pose2 corner = map.pose_of(0, 0, 0);  // centre of pose cell (0, 0)
-  const std::size_t wh = std::size_t(map.width()) * std::size_t(map.height());
+  const std::span<const std::uint32_t> candidates = map.candidates();
+  const std::size_t n = candidates.size(), w = std::size_t(map.width());
   double total = 0.0;
   for (int k = 0; k < c.headings; ++k) {
     const int d = (k + shift) % c.headings;
@@ -481,35 +543,33 @@ bool MarkovLocalization::update(const RangeReading& reading) {
     const std::span<const std::uint16_t> hits = map.first_hit_table(d);
     const double angle = k * bin + reading.bearing;
     const double ca = std::cos(angle), sa = std::sin(angle);
-    const double* bel = belief_.data() + std::size_t(k) * wh;
-    double* next = next_.data() + std::size_t(k) * wh;
-    for (int j = 0; j < map.height(); ++j)
-      for (int i = 0; i < map.width(); ++i) {
-        if (!map.is_candidate(i, j)) continue;
-        const std::size_t xy = std::size_t(j) * std::size_t(map.width()) + std::size_t(i);
-        double p = 0.0;
-        if (method_ == GlobalMethod::likelihood_field) {
-          const double x = corner.x + i * c.pose_res, y = corner.y + j * c.pose_res;
-          const double dist = map.distance_to_occupied(x + z * ca, y + z * sa);
-          p = c.z_hit * norm * std::exp(-dist * dist * inv2var) + rand_term;
+    const double* bel = belief_.data() + std::size_t(k) * n;
+    double* next = next_.data() + std::size_t(k) * n;
+    for (std::size_t candidate = 0; candidate < n; ++candidate) {
+      const std::size_t i = candidates[candidate] % w, j = candidates[candidate] / w;
+      double p = 0.0;
+      if (method_ == GlobalMethod::likelihood_field) {
+        const double x = corner.x + double(i) * c.pose_res, y = corner.y + double(j) * c.pose_res;
+        const double dist = map.distance_to_occupied(x + z * ca, y + z * sa);
+        p = c.z_hit * norm * std::exp(-dist * dist * inv2var) + rand_term;
+      } else {
+        const std::uint16_t h = hits[candidate];
+        const double expected =
+            h == LocalizationMap::kNoHit ? c.max_range : std::min(h * step, c.max_range);
+        const double e = z - expected;
+        const double hit = norm * std::exp(-e * e * inv2var);
+        if (method_ == GlobalMethod::markov) {
+          p = hit;
         } else {
-          const std::uint16_t h = hits[xy];
-          const double expected =
-              h == LocalizationMap::kNoHit ? c.max_range : std::min(h * step, c.max_range);
-          const double e = z - expected;
-          const double hit = norm * std::exp(-e * e * inv2var);
-          if (method_ == GlobalMethod::markov) {
-            p = hit;
-          } else {
-            p = c.z_hit * hit + rand_term + max_term;
-            if (z <= expected)
-              p += c.z_short * short_density / (1.0 - std::exp(-c.lambda_short * expected));
-          }
+          p = c.z_hit * hit + rand_term + max_term;
+          if (z <= expected)
+            p += c.z_short * short_density / (1.0 - std::exp(-c.lambda_short * expected));
         }
-        const double b = bel[xy] * p;
-        next[xy] = b;
-        total += b;
       }
+      const double b = bel[candidate] * p;
+      next[candidate] = b;
+      total += b;
+    }
   }
   if (!(total > 0.0) || !std::isfinite(total)) {
     ++dropped_;
@@ -526,74 +586,260 @@ bool MarkovLocalization::update(const RangeReading& reading) {
 
 namespace {
 
-// The mean of the tied best candidates' poses (headings by circular mean).
+// The mean of the tied best candidates' poses (headings by circular mean); is_best takes an
+// element of the candidate layout.
 template <class IsBest>
 GlobalEstimate mean_of_best(const LocalizationMap& map, IsBest&& is_best) {
   double sx = 0.0, sy = 0.0, sc = 0.0, ss = 0.0;
-  std::size_t n = 0;
+  std::size_t count = 0;
+  const std::span<const std::uint32_t> candidates = map.candidates();
+  const std::size_t n = candidates.size(), w = std::size_t(map.width());
   for (int k = 0; k < map.headings(); ++k)
-    for (int j = 0; j < map.height(); ++j)
-      for (int i = 0; i < map.width(); ++i) {
-        if (!map.is_candidate(i, j) || !is_best(map.index(i, j, k))) continue;
-        const core::Pose2 p = map.pose_of(i, j, k);
-        sx += p.x;
-        sy += p.y;
-        sc += std::cos(p.theta);
-        ss += std::sin(p.theta);
-        ++n;
-      }
+    for (std::size_t c = 0; c < n; ++c) {
+      if (!is_best(std::size_t(k) * n + c)) continue;
+      const core::Pose2 p = map.pose_of(int(candidates[c] % w), int(candidates[c] / w), k);
+      sx += p.x;
+      sy += p.y;
+      sc += std::cos(p.theta);
+      ss += std::sin(p.theta);
+      ++count;
+    }
   GlobalEstimate e;
-  e.ties = n;
-  const auto dn = static_cast<double>(n);
+  e.ties = count;
+  const auto dn = static_cast<double>(count);
   e.sensor = {sx / dn, sy / dn, std::atan2(ss, sc)};
   return e;
 }
 
 }  // namespace
 
+namespace {
+
+core::Pose2 robot_of(const core::Pose2& sensor, const core::Pose2& sensor_mount) {
+  core::Pose2 robot = core::compose(sensor, core::relative(sensor_mount, core::Pose2{}));
+  robot.theta = core::wrap_angle(robot.theta);
+  return robot;
+}
+
+std::vector<RangeReading> usable_readings(std::span<const RangeReading> readings,
+                                          double max_range) {
+  std::vector<RangeReading> used;
+  for (const RangeReading& r : readings)
+    if (usable(r, max_range)) used.push_back(r);
+  return used;
+}
+
+std::vector<ReadingClaims> claims_of(const LocalizationMap& map,
+                                     std::span<const RangeReading> readings, int threads) {
+  std::vector<ReadingClaims> out(readings.size());
+  core::run_parts(readings.size(), threads,
+                  [&](std::size_t r) { out[r] = map.claims(readings[r]); });
+  return out;
+}
+
+// A candidate pose cell of the screening: element q = k * candidates + c of the sums.
+struct ScoredCell {
+  std::int32_t score;
+  std::size_t q;
+};
+// Best first; equal scores in layout order, so the order does not depend on the threads.
+bool better(const ScoredCell& a, const ScoredCell& b) {
+  return a.score != b.score ? a.score > b.score : a.q < b.q;
+}
+
+// The screening cells the hypotheses are drawn from: the best ones, at most about kPool of them
+// (all cells of the score levels that fit, from the best down; at least the best level's first
+// kPool).
+constexpr std::size_t kPool = std::size_t{1} << 16;
+
+std::vector<ScoredCell> best_cells(std::span<const std::int32_t> sums) {
+  const std::int32_t best = *std::max_element(sums.begin(), sums.end());
+  // Levels below the best, counted over a window: the pool never reaches past it.
+  constexpr std::int64_t kWindow = 1 << 16;
+  std::vector<std::size_t> count(std::size_t(kWindow), 0);
+  for (const std::int32_t v : sums) {
+    const std::int64_t below = std::int64_t(best) - v;
+    if (below < kWindow) ++count[std::size_t(below)];
+  }
+  std::int64_t levels = 1;  // the best level always
+  std::size_t taken = count[0];
+  while (levels < kWindow && taken + count[std::size_t(levels)] <= kPool)
+    taken += count[std::size_t(levels++)];
+  const std::int64_t floor = std::int64_t(best) - (levels - 1);
+  std::vector<ScoredCell> pool;
+  pool.reserve(std::min(taken, kPool));
+  for (std::size_t q = 0; q < sums.size() && pool.size() < kPool; ++q)
+    if (sums[q] >= floor) pool.push_back({sums[q], q});
+  std::sort(pool.begin(), pool.end(), better);
+  return pool;
+}
+
+double heading_gap(double a, double b) {
+  return std::abs(core::wrap_angle(a - b));
+}
+
+}  // namespace
+
+void check_pose_search_options(const PoseSearchOptions& o) {
+  if (o.hypotheses < 1 || o.hypotheses > 1000)
+    core::fail<std::invalid_argument>("hypotheses must be 1..1000, got " +
+                                      std::to_string(o.hypotheses));
+  if (o.verified < 1 || o.verified > 1000)
+    core::fail<std::invalid_argument>("verified must be 1..1000, got " +
+                                      std::to_string(o.verified));
+  if (!(o.separation >= 0.0) || !std::isfinite(o.separation))
+    core::fail<std::invalid_argument>("separation must be a non-negative finite number");
+  if (!(o.separation_heading >= 0.0) || !std::isfinite(o.separation_heading))
+    core::fail<std::invalid_argument>("separation_heading must be a non-negative finite number");
+  if (!(o.ambiguity_levels >= 0.0) || !std::isfinite(o.ambiguity_levels))
+    core::fail<std::invalid_argument>("ambiguity_levels must be a non-negative finite number");
+  if (o.threads < 1 || o.threads > 256)
+    core::fail<std::invalid_argument>("threads must be 1..256, got " + std::to_string(o.threads));
+}
+
+PoseSearchResult search_pose_grid(const LocalizationMap& map,
+                                  std::span<const RangeReading> screening,
+                                  std::span<const RangeReading> verification,
+                                  const core::Pose2& sensor_mount, const PoseSearchOptions& options,
+                                  PoseScores* scores) {
+  check_pose_search_options(options);
+  const GlobalLocConfig& config = map.config();
+  const std::vector<RangeReading> screen = usable_readings(screening, config.max_range);
+  const std::vector<RangeReading> verify = usable_readings(verification, config.max_range);
+  const std::vector<ReadingClaims> screen_claims = claims_of(map, screen, options.threads);
+
+  // Screening: every candidate pose cell, the headings split into contiguous parts.
+  const std::span<const std::uint32_t> candidates = map.candidates();
+  const std::size_t n = candidates.size();
+  const int headings = map.headings();
+  std::vector<std::int32_t> sums(n * std::size_t(headings), 0);
+  const auto parts = std::size_t(std::min(options.threads, headings));
+  core::run_parts(parts, options.threads, [&](std::size_t p) {
+    const auto k_begin = static_cast<int>(std::size_t(headings) * p / parts);
+    const auto k_end = static_cast<int>(std::size_t(headings) * (p + 1) / parts);
+    map.add_readings_candidates(screen_claims, sums, k_begin, k_end);
+  });
+
+  // Hypotheses: the best cells, each `separation` from every better one.
+  const auto hypothesis_count = std::size_t(std::max(options.hypotheses, options.verified));
+  const auto cell_of = [&](std::size_t q) {
+    const std::uint32_t xy = candidates[q % n];
+    return std::array<int, 3>{int(xy % std::uint32_t(map.width())),
+                              int(xy / std::uint32_t(map.width())), int(q / n)};
+  };
+  const auto pose_at = [&](std::size_t q) {
+    const auto [i, j, k] = cell_of(q);
+    return map.pose_of(i, j, k);
+  };
+  std::vector<ScoredCell> seeds;
+  for (const ScoredCell& cell : best_cells(sums)) {
+    const core::Pose2 p = pose_at(cell.q);
+    const bool apart = std::all_of(seeds.begin(), seeds.end(), [&](const ScoredCell& s) {
+      const core::Pose2 o = pose_at(s.q);
+      return std::hypot(p.x - o.x, p.y - o.y) >= options.separation ||
+             heading_gap(p.theta, o.theta) >= options.separation_heading;
+    });
+    if (apart) seeds.push_back(cell);
+    if (seeds.size() == hypothesis_count) break;
+  }
+
+  // Verification: the best `verified` seeds' neighbourhoods scored with the verification
+  // readings (the screening's claims when the two are the same readings).
+  const bool same = std::equal(screen.begin(), screen.end(), verify.begin(), verify.end(),
+                               [](const RangeReading& a, const RangeReading& b) {
+                                 return a.range == b.range && a.bearing == b.bearing;
+                               });
+  const std::vector<ReadingClaims> verify_claims =
+      same ? std::vector<ReadingClaims>{} : claims_of(map, verify, options.threads);
+  const std::vector<ReadingClaims>& vclaims = same ? screen_claims : verify_claims;
+  struct Ranked {
+    PoseHypothesis h;
+    std::size_t seed;
+  };
+  std::vector<Ranked> ranked;
+  const std::size_t verified = std::min(seeds.size(), std::size_t(options.verified));
+  for (std::size_t s = 0; s < verified; ++s) {
+    const auto [i0, j0, k0] = cell_of(seeds[s].q);
+    std::int32_t best = std::numeric_limits<std::int32_t>::min();
+    std::vector<std::array<int, 3>> tied;
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int i = i0 + di, j = j0 + dj, k = ((k0 + dk) % headings + headings) % headings;
+          if (i < 0 || j < 0 || i >= map.width() || j >= map.height()) continue;
+          const std::int32_t c = map.candidate_index(i, j);
+          if (c < 0) continue;
+          std::int32_t v = 0;
+          for (const ReadingClaims& r : vclaims) v += map.claim_at(r, std::size_t(c), k);
+          if (v > best) best = v, tied.clear();
+          if (v == best) tied.push_back({i, j, k});
+        }
+    double sx = 0.0, sy = 0.0, sc = 0.0, ss = 0.0;
+    for (const auto& [i, j, k] : tied) {
+      const core::Pose2 p = map.pose_of(i, j, k);
+      sx += p.x, sy += p.y, sc += std::cos(p.theta), ss += std::sin(p.theta);
+    }
+    const auto t = static_cast<double>(tied.size());
+    PoseHypothesis h;
+    h.sensor = {sx / t, sy / t, std::atan2(ss, sc)};
+    h.robot = robot_of(h.sensor, sensor_mount);
+    h.screening_score = seeds[s].score;
+    h.score = best;
+    h.ties = tied.size();
+    ranked.push_back({h, s});
+  }
+  std::sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
+    return a.h.score != b.h.score ? a.h.score > b.h.score : a.seed < b.seed;
+  });
+
+  PoseSearchResult result;
+  result.verification_readings = verify.size();
+  for (std::size_t r = 0; r < ranked.size() && r < std::size_t(options.hypotheses); ++r)
+    result.hypotheses.push_back(ranked[r].h);
+  result.ambiguous = ranked.size() >= 2 && double(ranked[0].h.score) - double(ranked[1].h.score) <=
+                                               options.ambiguity_levels * double(verify.size());
+  const PoseHypothesis& top = ranked.front().h;
+  result.estimate.sensor = top.sensor;
+  result.estimate.robot = top.robot;
+  result.estimate.score = top.score;
+  result.estimate.ties = top.ties;
+  result.estimate.readings_used = screen.size();
+  if (scores) {
+    scores->method = GlobalMethod::pose_grid;
+    scores->posterior.clear();
+    scores->index_sum.assign(map.pose_cells(), std::numeric_limits<std::int32_t>::min());
+    for (std::size_t q = 0; q < sums.size(); ++q) {
+      const auto [i, j, k] = cell_of(q);
+      scores->index_sum[map.index(i, j, k)] = sums[q];
+    }
+  }
+  return result;
+}
+
 GlobalEstimate localize_global(const LocalizationMap& map, std::span<const RangeReading> readings,
                                const core::Pose2& sensor_mount, GlobalMethod method,
                                PoseScores* scores) {
-  const GlobalLocConfig& c = map.config();
-  std::vector<RangeReading> used;
-  for (const RangeReading& r : readings)
-    if (usable(r, c.max_range)) used.push_back(r);
-
-  GlobalEstimate estimate;
-  if (method == GlobalMethod::pose_grid) {
-    std::vector<std::int32_t> pog(map.pose_cells(), 0);
-    for (const RangeReading& r : used) map.add_reading_dense(map.claims(r), pog);
-    std::int32_t best = std::numeric_limits<std::int32_t>::min();
-    for (int k = 0; k < map.headings(); ++k)
-      for (int j = 0; j < map.height(); ++j)
-        for (int i = 0; i < map.width(); ++i) {
-          std::int32_t& s = pog[map.index(i, j, k)];
-          if (map.is_candidate(i, j))
-            best = std::max(best, s);
-          else
-            s = std::numeric_limits<std::int32_t>::min();
-        }
-    estimate = mean_of_best(map, [&](std::size_t q) { return pog[q] == best; });
-    estimate.score = best;
-    if (scores) *scores = {method, std::move(pog), {}};
-  } else {
-    MarkovLocalization markov(map, method);
-    for (const RangeReading& r : used) markov.update(r);
-    const std::span<const double> belief = markov.belief();
-    double best = -1.0;
-    for (int k = 0; k < map.headings(); ++k)
-      for (int j = 0; j < map.height(); ++j)
-        for (int i = 0; i < map.width(); ++i)
-          if (map.is_candidate(i, j)) best = std::max(best, belief[map.index(i, j, k)]);
-    estimate = mean_of_best(map, [&](std::size_t q) { return belief[q] == best; });
-    estimate.score = best;
-    estimate.readings_dropped = markov.dropped();
-    if (scores) *scores = {method, {}, std::vector<double>(belief.begin(), belief.end())};
+  if (method == GlobalMethod::pose_grid)
+    return search_pose_grid(map, readings, readings, sensor_mount, PoseSearchOptions{}, scores)
+        .estimate;
+  const std::vector<RangeReading> used = usable_readings(readings, map.config().max_range);
+  MarkovLocalization markov(map, method);
+  for (const RangeReading& r : used) markov.update(r);
+  const std::span<const double> belief = markov.belief();
+  const double best = *std::max_element(belief.begin(), belief.end());
+  GlobalEstimate estimate = mean_of_best(map, [&](std::size_t q) { return belief[q] == best; });
+  estimate.score = best;
+  estimate.readings_dropped = markov.dropped();
+  if (scores) {
+    *scores = {method, {}, std::vector<double>(map.pose_cells(), 0.0)};
+    const std::span<const std::uint32_t> candidates = map.candidates();
+    const std::size_t n = candidates.size(), w = std::size_t(map.width());
+    for (std::size_t q = 0; q < belief.size(); ++q)
+      scores->posterior[map.index(int(candidates[q % n] % w), int(candidates[q % n] / w),
+                                  int(q / n))] = belief[q];
   }
   estimate.readings_used = used.size();
-  const core::Pose2 inverse_mount = core::relative(sensor_mount, core::Pose2{});
-  estimate.robot = core::compose(estimate.sensor, inverse_mount);
-  estimate.robot.theta = core::wrap_angle(estimate.robot.theta);
+  estimate.robot = robot_of(estimate.sensor, sensor_mount);
   return estimate;
 }
 

@@ -18,7 +18,9 @@ namespace fs = std::filesystem;
 // '\r' counts as a blank, so lines of CRLF files parse like LF ones.
 constexpr std::string_view kBlanks = " \t\r\v\f";
 
-constexpr std::array<const char*, 8> kFields = {"t1", "t2", "x", "y", "z", "roll", "pitch", "yaw"};
+constexpr std::array<const char*, 8> kRelationFields = {"t1", "t2",   "x",     "y",
+                                                        "z",  "roll", "pitch", "yaw"};
+constexpr std::array<const char*, 4> kPoseFields = {"t", "x", "y", "theta"};
 
 // The next blank-separated token of rest, consumed; nothing at the line's end.
 std::optional<std::string_view> take_token(std::string_view& rest) {
@@ -30,34 +32,36 @@ std::optional<std::string_view> take_token(std::string_view& rest) {
   return token;
 }
 
-slam::Relation parse_relation(const fs::path& file, std::size_t line, std::string_view text) {
-  std::array<double, kFields.size()> values{};
-  for (std::size_t i = 0; i < kFields.size(); ++i) {
+// One line of finite numbers, exactly the named fields; `record` names the line's form in
+// messages ("a relation is t1 t2 x y z roll pitch yaw").
+template <std::size_t N>
+std::array<double, N> parse_fields(const fs::path& file, std::size_t line, std::string_view text,
+                                   const std::array<const char*, N>& fields,
+                                   const std::string& record) {
+  std::array<double, N> values{};
+  for (std::size_t i = 0; i < N; ++i) {
     const std::optional<std::string_view> token = take_token(text);
     if (!token)
-      throw InputError(file, line, kFields[i],
-                       "missing: the line ends before this field (a relation is t1 t2 x y z roll "
-                       "pitch yaw)");
-    values[i] = parse_number<double>(*token, file, line, kFields[i]);
+      throw InputError(file, line, fields[i],
+                       "missing: the line ends before this field (" + record + ")");
+    values[i] = parse_number<double>(*token, file, line, fields[i]);
     if (!std::isfinite(values[i]))
-      throw InputError(file, line, kFields[i],
+      throw InputError(file, line, fields[i],
                        "must be a finite number, got " + std::string(*token));
   }
   if (const std::optional<std::string_view> extra = take_token(text)) {
     std::size_t count = 1;
     while (take_token(text)) ++count;
-    throw InputError(file, line, "yaw",
-                     std::to_string(count) + " unexpected field(s) after yaw, starting with \"" +
-                         std::string(*extra) + "\"");
+    throw InputError(file, line, fields[N - 1],
+                     std::to_string(count) + " unexpected field(s) after " + fields[N - 1] +
+                         ", starting with \"" + std::string(*extra) + "\"");
   }
-  return {values[0], values[1], {values[2], values[3], values[7]}};
+  return values;
 }
 
-}  // namespace
-
-std::vector<RelationRecord> read_relations(const fs::path& file) {
-  const std::string content = read_input_file(file);
-  std::vector<RelationRecord> records;
+// Calls parse(line number, text) for every line that is neither blank nor a '#' comment.
+template <class Parse>
+void for_each_record(const std::string& content, Parse&& parse) {
   std::string_view rest = content;
   std::size_t number = 0;
   while (!rest.empty()) {
@@ -67,12 +71,36 @@ std::vector<RelationRecord> read_relations(const fs::path& file) {
     ++number;
     const std::size_t first = text.find_first_not_of(kBlanks);
     if (first == std::string_view::npos || text[first] == '#') continue;
-    records.push_back({number, parse_relation(file, number, text)});
+    parse(number, text);
   }
+}
+
+}  // namespace
+
+std::vector<RelationRecord> read_relations(const fs::path& file) {
+  std::vector<RelationRecord> records;
+  for_each_record(read_input_file(file), [&](std::size_t line, std::string_view text) {
+    const auto v =
+        parse_fields(file, line, text, kRelationFields, "a relation is t1 t2 x y z roll pitch yaw");
+    records.push_back({line, {v[0], v[1], {v[2], v[3], v[7]}}});
+  });
   if (records.empty())
     throw InputError(file, 0, "relations",
                      "the file holds no relation (one a line: t1 t2 x y z roll pitch yaw)");
   return records;
+}
+
+std::vector<slam::TimedPose> read_trajectory(const fs::path& file) {
+  std::vector<slam::TimedPose> poses;
+  for_each_record(read_input_file(file), [&](std::size_t line, std::string_view text) {
+    const auto v = parse_fields(file, line, text, kPoseFields, "a pose is t x y theta");
+    if (!poses.empty() && v[0] < poses.back().t)
+      throw InputError(file, line, "t", "earlier than the line before: poses in time order");
+    poses.push_back({v[0], {v[1], v[2], v[3]}});
+  });
+  if (poses.empty())
+    throw InputError(file, 0, "poses", "the file holds no pose (one a line: t x y theta)");
+  return poses;
 }
 
 std::vector<slam::Relation> relations_of(std::span<const RelationRecord> records) {

@@ -46,6 +46,9 @@ struct GlobalLocConfig {
   // Baselines' beam-model weights (Probabilistic Robotics 6.3; AMCL's defaults).
   // z_hit and lambda_short must be positive, the others non-negative.
   double z_hit = 0.95, z_short = 0.1, z_max = 0.05, z_rand = 0.05, lambda_short = 0.1;
+  // The most a map's tables and one localization's scores may take (bytes): a LocalizationMap or
+  // MarkovLocalization that would need more is refused before it allocates.
+  std::size_t memory_limit = 1'000'000'000;
 };
 
 // Throws std::invalid_argument naming the offending field.
@@ -107,9 +110,15 @@ class LocalizationMap {
   // first_hit_steps when the ray leaves the lattice without meeting an occupied cell.
   static constexpr std::uint16_t kNoHit = 0xFFFF;
 
+  // Bytes per candidate pose cell: its first hit per direction (uint16) and, while a scan is
+  // localized, its index sum (int32). Non-candidate cells cost neither.
+  static constexpr std::size_t kBytesPerCandidatePoseCell = 6;
+
   // Throws std::invalid_argument: a pose resolution finer than the map's, a map without any
   // free pose cell, thresholds outside [0, 1] or free_threshold >= occupied_threshold, a bad
-  // configuration, a lattice of 65535 cells or more along an axis.
+  // configuration, a lattice of 65535 cells or more along an axis, tables and scores that would
+  // exceed config.memory_limit (the message starts "memory_limit", before anything is allocated
+  // past the map's own size).
   LocalizationMap(const core::ProbabilityGrid& map, double occupied_threshold,
                   double free_threshold, const GlobalLocConfig& config);
 
@@ -128,6 +137,15 @@ class LocalizationMap {
     return class_[std::size_t(j) * std::size_t(width_) + std::size_t(i)];
   }
   bool is_candidate(int i, int j) const { return cell_class(i, j) == PoseCellClass::free; }
+  // The candidate positions (free pose cells) in xy order, each as j * width + i; a candidate
+  // pose cell is (candidate c, heading k), element k * candidates + c of a candidate-layout grid.
+  std::span<const std::uint32_t> candidates() const { return candidates_; }
+  // c of position (i, j), or -1 for a non-candidate.
+  std::int32_t candidate_index(int i, int j) const {
+    return candidate_of_[std::size_t(j) * std::size_t(width_) + std::size_t(i)];
+  }
+  // What the tables and one scan's scores take (bytes), as the constructor checked it.
+  std::size_t memory_bytes() const { return memory_bytes_; }
   double heading_bin() const;  // 2 pi / headings (rad)
 
   // The digital lines of direction bin d.
@@ -140,7 +158,7 @@ class LocalizationMap {
   // Steps from free pose cell (i, j) along d to the first occupied cell (>= 1), kNoHit if the ray
   // leaves the lattice first. Non-candidate cells hold kNoHit.
   std::uint16_t first_hit_steps(int i, int j, int d) const;
-  // The same for every cell of direction d, element j * width + i.
+  // The same for every candidate position of direction d, element c (candidates()).
   std::span<const std::uint16_t> first_hit_table(int d) const;
   // Live sources along d: occupied cells with at least one free cell on their run (the cells
   // before them on their line, back to the previous occupied cell or the lattice's edge).
@@ -161,6 +179,18 @@ class LocalizationMap {
   template <class Score>
   void add_reading_dense(const BasicReadingClaims<Score>& claims,
                          std::span<std::type_identity_t<Score>> pog) const;
+  // Candidate form: the dense form of every reading at once on the candidate layout
+  // (scores[k * candidates + c] += claim of each reading), for the headings [k_begin, k_end) only,
+  // so that threads can share one grid by headings. The candidates are walked in tiles that stay
+  // in cache across the readings; the sums are the dense form's, cell for cell.
+  void add_readings_candidates(std::span<const ReadingClaims> claims,
+                               std::span<std::int32_t> scores, int k_begin, int k_end) const;
+  // The claim of one reading on one candidate pose cell: what the candidate form adds there.
+  std::int32_t claim_at(const ReadingClaims& claims, std::size_t c, int k) const {
+    const auto d = std::size_t((k + claims.shift) % config_.headings);
+    const std::vector<std::int32_t>& t = claims.claim[d];
+    return t[std::min<std::size_t>(directions_[d].first_hit[c], t.size() - 1)];
+  }
   // Walk form: from every live source along every d, walk back over its run adding claim[d][rho]
   // to the free cells rho steps before it, until the claims end. The same grid as the dense form.
   void add_reading_walk(const ReadingClaims& claims, std::span<std::int32_t> pog) const;
@@ -178,7 +208,7 @@ class LocalizationMap {
     double step = 0.0;
     int step_group = 0;                    // directions of one step length share their ISM tables
     std::vector<std::int32_t> offset;      // floor(u m + 1/2) for u along the major axis
-    std::vector<std::uint16_t> first_hit;  // per xy cell (j * width + i)
+    std::vector<std::uint16_t> first_hit;  // per candidate position
     std::vector<Source> sources;           // live ones
   };
 
@@ -188,6 +218,9 @@ class LocalizationMap {
   double occupied_threshold_ = 0.0, free_threshold_ = 0.0;
   std::vector<PoseCellClass> class_;  // per xy cell
   std::size_t free_cells_ = 0;
+  std::vector<std::uint32_t> candidates_;   // xy of each candidate position
+  std::vector<std::int32_t> candidate_of_;  // per xy cell: its candidate index, or -1
+  std::size_t memory_bytes_ = 0;
   std::vector<Direction> directions_;
   std::vector<double> group_step_;  // step length of each step group
   core::GridGeometry map_geometry_;
@@ -214,7 +247,8 @@ class LocalizationMap {
 // N is the normalized Gaussian density and sigma_eff the pose grid's (rule 1).
 class MarkovLocalization {
  public:
-  // Uniform prior over the candidates, 0 elsewhere. Throws std::invalid_argument for pose_grid.
+  // Uniform prior over the candidates. Throws std::invalid_argument for pose_grid, and (naming
+  // memory_limit) when the two beliefs would exceed the configuration's memory limit.
   MarkovLocalization(const LocalizationMap& map, GlobalMethod method);
 
   // Fuses one reading. Returns false, leaving the belief unchanged, when every candidate's
@@ -222,7 +256,7 @@ class MarkovLocalization {
   // for a range that is not finite and positive or not below max_range, or a bearing that is not
   // finite.
   bool update(const RangeReading& reading);
-  // pose_cells() elements laid out as LocalizationMap::index(), 0 on non-candidates, summing to 1.
+  // candidate_cells() elements in the candidate layout (k * candidates + c), summing to 1.
   std::span<const double> belief() const { return belief_; }
   std::size_t dropped() const { return dropped_; }
 
@@ -249,10 +283,58 @@ struct GlobalEstimate {
   std::size_t readings_dropped = 0;  // baselines: readings that zeroed every candidate
 };
 
+// One place a scan fits: the best pose cell of its neighbourhood, at least `separation` (or
+// `separation_heading`) from every better hypothesis.
+struct PoseHypothesis {
+  core::Pose2 sensor;                // mean of the cells tied at `score` around the hypothesis
+  core::Pose2 robot;                 // the sensor pose stepped back by the mounting pose
+  std::int32_t screening_score = 0;  // index sum of the screening readings at its screening cell
+  std::int32_t score = 0;            // index sum of the verification readings (the whole scan)
+  std::size_t ties = 1;              // cells tied at `score` in its neighbourhood
+};
+
+struct PoseSearchOptions {
+  int hypotheses = 1;  // reported, best first
+  // The best screening hypotheses rescored with the verification readings over their
+  // neighbourhood (one cell and one heading bin around): the screening's few readings cannot
+  // tell apart places that look alike, the whole scan often can.
+  int verified = 8;
+  double separation = 1.0;             // m: two hypotheses differ by at least this in position,
+  double separation_heading = 0.5236;  // or this in heading (rad, 30 degrees)
+  // The answer is ambiguous when a second hypothesis scores within this many S_eps levels per
+  // verification reading of the best: a user should wait for another scan.
+  double ambiguity_levels = 0.5;
+  int threads = 1;  // the screening's headings split across threads; any count, the same result
+};
+
+struct PoseSearchResult {
+  GlobalEstimate estimate;                 // the best hypothesis
+  std::vector<PoseHypothesis> hypotheses;  // best first, at most max(hypotheses, 1)
+  bool ambiguous = false;
+  std::size_t verification_readings = 0;
+};
+
+// Throws std::invalid_argument naming the field.
+void check_pose_search_options(const PoseSearchOptions& options);
+
+// The pose grid's search: every candidate pose cell scored with the screening readings (the
+// candidate form), the best cells grouped into hypotheses `separation` apart, the best
+// `verified` of them rescored with the verification readings, ranked by that score. Readings
+// that are not usable are dropped, as localize_global does. `scores`, when given, receives the
+// screening scores in the PoseScores layout.
+PoseSearchResult search_pose_grid(const LocalizationMap& map,
+                                  std::span<const RangeReading> screening,
+                                  std::span<const RangeReading> verification,
+                                  const core::Pose2& sensor_mount, const PoseSearchOptions& options,
+                                  PoseScores* scores = nullptr);
+
 // Localizes one set of readings from no prior. Readings that are not finite and positive, at or
 // past max_range, or with a non-finite bearing are not used. `scores`, when given, receives every
-// cell's. The sensor estimate is the best candidate cell's pose (pose_of), the mean of the tied
-// ones (headings by circular mean); robot = compose(sensor, inverse of sensor_mount).
+// cell's. Baselines: the sensor estimate is the best candidate cell's pose (pose_of), the mean of
+// the tied ones (headings by circular mean). The pose grid: search_pose_grid's best hypothesis with
+// the readings as both screening and verification readings, one thread (ties is then the count of
+// cells at the best score; the estimate, the mean of those around the first of them).
+// robot = compose(sensor, inverse of sensor_mount).
 GlobalEstimate localize_global(const LocalizationMap& map, std::span<const RangeReading> readings,
                                const core::Pose2& sensor_mount, GlobalMethod method,
                                PoseScores* scores = nullptr);

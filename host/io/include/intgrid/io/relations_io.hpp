@@ -1,5 +1,5 @@
-// The Freiburg SLAM benchmark's relations files, read; trajectories written in the TUM format
-// for other tools (evo, the TUM RGB-D scripts).
+// The Freiburg SLAM benchmark's relations files and the SLAM's trajectories, read; trajectories
+// written in the TUM format for other tools (evo, the TUM RGB-D scripts).
 #pragma once
 
 #include <cstddef>
@@ -25,6 +25,13 @@ struct RelationRecord {
 // y, z, roll, pitch, yaw) for a missing, unparsable or non-finite field or an extra one, and
 // (line 0, field "relations") for a file that holds no relation or cannot be read.
 std::vector<RelationRecord> read_relations(const std::filesystem::path& file);
+
+// Reads a trajectory as `intgrid slam` writes it (trajectory.txt): one pose a line, `t x y theta`
+// (seconds, metres, radians), in time order; blank lines and '#' comments skipped. Throws
+// InputError naming file, line and field (t, x, y, theta) for a missing, unparsable or non-finite
+// field, an extra one or a time earlier than the line before, and (line 0, field "poses") for a
+// file without any pose.
+std::vector<slam::TimedPose> read_trajectory(const std::filesystem::path& file);
 
 // The relations of records, in order.
 std::vector<slam::Relation> relations_of(std::span<const RelationRecord> records);
