@@ -277,9 +277,12 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         localization::readings_of(log.scans[i], o.beams, o.config.max_range);
     if (readings.empty())
       ++r.skipped_scans;
-    else
-      jobs.push_back({i, std::move(readings),
-                      localization::readings_of(log.scans[i], o.verify_beams, o.config.max_range)});
+    else  // the verification readings are the pose grid's alone
+      jobs.push_back(
+          {i, std::move(readings),
+           o.method == localization::GlobalMethod::pose_grid
+               ? localization::readings_of(log.scans[i], o.verify_beams, o.config.max_range)
+               : std::vector<localization::RangeReading>{}});
   }
   if (jobs.empty())
     throw io::InputError(

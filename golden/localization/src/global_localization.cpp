@@ -49,6 +49,16 @@ const GlobalLocConfig& checked(const GlobalLocConfig& c) {
   return c;
 }
 
+// The refusal of tables that would exceed the limit, before they are allocated; `hint` (empty or
+// ": ...") says what makes them smaller.
+[[noreturn]] void refuse_memory(const std::string& what, double bytes, std::size_t limit,
+                                const std::string& hint = "") {
+  core::fail<std::invalid_argument>("memory_limit: " + what + " needs about " +
+                                    std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) +
+                                    " MB, above the " + std::to_string(limit / 1000000) +
+                                    " MB limit" + hint);
+}
+
 // Heading bin of a bearing: round(bearing / bin) mod headings.
 int bearing_shift(double bearing, double bin, int headings) {
   const long long s = std::llround(bearing / bin) % headings;
@@ -172,14 +182,11 @@ LocalizationMap::LocalizationMap(const core::ProbabilityGrid& map, double occupi
                        double(wh) * double(sizeof(std::int32_t)) + double(free_cells_) * 4.0 +
                        double(g.size()) * double(sizeof(double));
   if (bytes > double(config_.memory_limit))
-    core::fail<std::invalid_argument>(
-        "memory_limit: a pose grid of " + std::to_string(width_) + " x " + std::to_string(height_) +
-        " cells x " + std::to_string(headings) + " heading bins (" +
-        std::to_string(free_cells_ * headings) + " candidate pose cells, " +
-        std::to_string(kBytesPerCandidatePoseCell) + " bytes each) needs about " +
-        std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) + " MB, above the " +
-        std::to_string(config_.memory_limit / 1000000) +
-        " MB limit: a coarser pose cell or fewer headings");
+    refuse_memory("a pose grid of " + std::to_string(width_) + " x " + std::to_string(height_) +
+                      " cells x " + std::to_string(headings) + " heading bins (" +
+                      std::to_string(free_cells_ * headings) + " candidate pose cells, " +
+                      std::to_string(kBytesPerCandidatePoseCell) + " bytes each)",
+                  bytes, config_.memory_limit, ": a coarser pose cell or fewer headings");
   memory_bytes_ = static_cast<std::size_t>(bytes);
   candidate_of_.assign(wh, -1);
   candidates_.reserve(free_cells_);
@@ -413,15 +420,20 @@ LogOddsClaims LocalizationMap::log_odds_claims(const RangeReading& reading) cons
 
 namespace {
 template <class Score>
-void check_pog(const LocalizationMap& map, const BasicReadingClaims<Score>& claims,
-               std::size_t size) {
-  if (size != map.pose_cells())
-    core::fail<std::invalid_argument>("pog: its size differs from the pose grid's");
+void check_claims(const LocalizationMap& map, const BasicReadingClaims<Score>& claims) {
   if (claims.claim.size() != std::size_t(map.headings()) || claims.shift < 0 ||
       claims.shift >= map.headings() ||
       std::any_of(claims.claim.begin(), claims.claim.end(),
                   [](const std::vector<Score>& t) { return t.empty() || t.back() != 0; }))
     core::fail<std::invalid_argument>("claims: not made for this map's headings");
+}
+
+template <class Score>
+void check_pog(const LocalizationMap& map, const BasicReadingClaims<Score>& claims,
+               std::size_t size) {
+  if (size != map.pose_cells())
+    core::fail<std::invalid_argument>("pog: its size differs from the pose grid's");
+  check_claims(map, claims);
 }
 }  // namespace
 
@@ -453,7 +465,7 @@ void LocalizationMap::add_readings_candidates(std::span<const ReadingClaims> cla
     core::fail<std::invalid_argument>("scores: its size differs from the candidate pose cells'");
   if (k_begin < 0 || k_end > headings || k_begin > k_end)
     core::fail<std::invalid_argument>("headings: the range lies outside the pose grid's");
-  for (const ReadingClaims& c : claims) check_pog(*this, c, pose_cells());
+  for (const ReadingClaims& c : claims) check_claims(*this, c);
   // A tile's sums (16 KB) and first hits (8 KB a reading) stay in the first-level cache while
   // every reading adds to it.
   constexpr std::size_t kTile = 4096;
@@ -511,11 +523,9 @@ MarkovLocalization::MarkovLocalization(const LocalizationMap& map, GlobalMethod 
     core::fail<std::invalid_argument>("method: Markov localization needs a baseline method");
   const double bytes = 2.0 * sizeof(double) * double(map.candidate_cells());
   if (bytes > double(map.config().memory_limit))
-    core::fail<std::invalid_argument>(
-        "memory_limit: Markov localization's two beliefs over " +
-        std::to_string(map.candidate_cells()) + " candidate pose cells need about " +
-        std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) + " MB, above the " +
-        std::to_string(map.config().memory_limit / 1000000) + " MB limit");
+    refuse_memory("Markov localization's two beliefs over " +
+                      std::to_string(map.candidate_cells()) + " candidate pose cells",
+                  bytes, map.config().memory_limit);
   belief_.assign(map.candidate_cells(), 1.0 / static_cast<double>(map.candidate_cells()));
   next_.assign(map.candidate_cells(), 0.0);
 }
@@ -592,18 +602,16 @@ template <class IsBest>
 GlobalEstimate mean_of_best(const LocalizationMap& map, IsBest&& is_best) {
   double sx = 0.0, sy = 0.0, sc = 0.0, ss = 0.0;
   std::size_t count = 0;
-  const std::span<const std::uint32_t> candidates = map.candidates();
-  const std::size_t n = candidates.size(), w = std::size_t(map.width());
-  for (int k = 0; k < map.headings(); ++k)
-    for (std::size_t c = 0; c < n; ++c) {
-      if (!is_best(std::size_t(k) * n + c)) continue;
-      const core::Pose2 p = map.pose_of(int(candidates[c] % w), int(candidates[c] / w), k);
-      sx += p.x;
-      sy += p.y;
-      sc += std::cos(p.theta);
-      ss += std::sin(p.theta);
-      ++count;
-    }
+  for (std::size_t q = 0; q < map.candidate_cells(); ++q) {
+    if (!is_best(q)) continue;
+    const auto [i, j, k] = map.candidate_cell(q);
+    const core::Pose2 p = map.pose_of(i, j, k);
+    sx += p.x;
+    sy += p.y;
+    sc += std::cos(p.theta);
+    ss += std::sin(p.theta);
+    ++count;
+  }
   GlobalEstimate e;
   e.ties = count;
   const auto dn = static_cast<double>(count);
@@ -611,9 +619,17 @@ GlobalEstimate mean_of_best(const LocalizationMap& map, IsBest&& is_best) {
   return e;
 }
 
-}  // namespace
-
-namespace {
+// A candidate-layout grid laid out as LocalizationMap::index(), `outside` on non-candidates.
+template <class Score>
+std::vector<Score> in_pose_layout(const LocalizationMap& map, std::span<const Score> grid,
+                                  Score outside) {
+  std::vector<Score> out(map.pose_cells(), outside);
+  for (std::size_t q = 0; q < grid.size(); ++q) {
+    const auto [i, j, k] = map.candidate_cell(q);
+    out[map.index(i, j, k)] = grid[q];
+  }
+  return out;
+}
 
 core::Pose2 robot_of(const core::Pose2& sensor, const core::Pose2& sensor_mount) {
   core::Pose2 robot = core::compose(sensor, core::relative(sensor_mount, core::Pose2{}));
@@ -709,10 +725,8 @@ PoseSearchResult search_pose_grid(const LocalizationMap& map,
   const std::vector<ReadingClaims> screen_claims = claims_of(map, screen, options.threads);
 
   // Screening: every candidate pose cell, the headings split into contiguous parts.
-  const std::span<const std::uint32_t> candidates = map.candidates();
-  const std::size_t n = candidates.size();
   const int headings = map.headings();
-  std::vector<std::int32_t> sums(n * std::size_t(headings), 0);
+  std::vector<std::int32_t> sums(map.candidate_cells(), 0);
   const auto parts = std::size_t(std::min(options.threads, headings));
   core::run_parts(parts, options.threads, [&](std::size_t p) {
     const auto k_begin = static_cast<int>(std::size_t(headings) * p / parts);
@@ -722,13 +736,8 @@ PoseSearchResult search_pose_grid(const LocalizationMap& map,
 
   // Hypotheses: the best cells, each `separation` from every better one.
   const auto hypothesis_count = std::size_t(std::max(options.hypotheses, options.verified));
-  const auto cell_of = [&](std::size_t q) {
-    const std::uint32_t xy = candidates[q % n];
-    return std::array<int, 3>{int(xy % std::uint32_t(map.width())),
-                              int(xy / std::uint32_t(map.width())), int(q / n)};
-  };
   const auto pose_at = [&](std::size_t q) {
-    const auto [i, j, k] = cell_of(q);
+    const auto [i, j, k] = map.candidate_cell(q);
     return map.pose_of(i, j, k);
   };
   std::vector<ScoredCell> seeds;
@@ -759,7 +768,7 @@ PoseSearchResult search_pose_grid(const LocalizationMap& map,
   std::vector<Ranked> ranked;
   const std::size_t verified = std::min(seeds.size(), std::size_t(options.verified));
   for (std::size_t s = 0; s < verified; ++s) {
-    const auto [i0, j0, k0] = cell_of(seeds[s].q);
+    const auto [i0, j0, k0] = map.candidate_cell(seeds[s].q);
     std::int32_t best = std::numeric_limits<std::int32_t>::min();
     std::vector<std::array<int, 3>> tied;
     for (int dk = -1; dk <= 1; ++dk)
@@ -804,15 +813,11 @@ PoseSearchResult search_pose_grid(const LocalizationMap& map,
   result.estimate.score = top.score;
   result.estimate.ties = top.ties;
   result.estimate.readings_used = screen.size();
-  if (scores) {
-    scores->method = GlobalMethod::pose_grid;
-    scores->posterior.clear();
-    scores->index_sum.assign(map.pose_cells(), std::numeric_limits<std::int32_t>::min());
-    for (std::size_t q = 0; q < sums.size(); ++q) {
-      const auto [i, j, k] = cell_of(q);
-      scores->index_sum[map.index(i, j, k)] = sums[q];
-    }
-  }
+  if (scores)
+    *scores = {GlobalMethod::pose_grid,
+               in_pose_layout(map, std::span<const std::int32_t>(sums),
+                              std::numeric_limits<std::int32_t>::min()),
+               {}};
   return result;
 }
 
@@ -830,14 +835,7 @@ GlobalEstimate localize_global(const LocalizationMap& map, std::span<const Range
   GlobalEstimate estimate = mean_of_best(map, [&](std::size_t q) { return belief[q] == best; });
   estimate.score = best;
   estimate.readings_dropped = markov.dropped();
-  if (scores) {
-    *scores = {method, {}, std::vector<double>(map.pose_cells(), 0.0)};
-    const std::span<const std::uint32_t> candidates = map.candidates();
-    const std::size_t n = candidates.size(), w = std::size_t(map.width());
-    for (std::size_t q = 0; q < belief.size(); ++q)
-      scores->posterior[map.index(int(candidates[q % n] % w), int(candidates[q % n] / w),
-                                  int(q / n))] = belief[q];
-  }
+  if (scores) *scores = {method, {}, in_pose_layout(map, belief, 0.0)};
   estimate.readings_used = used.size();
   estimate.robot = robot_of(estimate.sensor, sensor_mount);
   return estimate;

@@ -140,6 +140,12 @@ class LocalizationMap {
   // The candidate positions (free pose cells) in xy order, each as j * width + i; a candidate
   // pose cell is (candidate c, heading k), element k * candidates + c of a candidate-layout grid.
   std::span<const std::uint32_t> candidates() const { return candidates_; }
+  // The pose cell (i, j, k) of element q = k * candidates + c of a candidate-layout grid.
+  std::array<int, 3> candidate_cell(std::size_t q) const {
+    const std::uint32_t xy = candidates_[q % candidates_.size()];
+    return {int(xy % std::uint32_t(width_)), int(xy / std::uint32_t(width_)),
+            int(q / candidates_.size())};
+  }
   // c of position (i, j), or -1 for a non-candidate.
   std::int32_t candidate_index(int i, int j) const {
     return candidate_of_[std::size_t(j) * std::size_t(width_) + std::size_t(i)];
