@@ -28,7 +28,9 @@ const FieldFlags& global_loc_flags() {
                                    {"max_range", "--max-range"},
                                    {"seps_levels", "--levels"},
                                    {"veto_levels", "--veto-levels"},
-                                   {"memory_limit", "--max-memory"}};
+                                   {"memory_limit", "--max-memory"},
+                                   {"refine_levels", "--refine-levels"},
+                                   {"max_scans", "--track"}};
   return flags;
 }
 
@@ -68,6 +70,11 @@ void add_global_loc_options(CLI::App& cmd, localization::GlobalLocConfig& c) {
                  "bound of a reading's negative claims, at most --levels (--levels: rule 2's own "
                  "bound)")
       ->transform(whole_range(0, core::max_index_for_bits(c.seps_bits)))
+      ->capture_default_str();
+  cmd.add_option("--refine-levels", c.refine_levels,
+                 "pog: levels of the hypotheses' refinement on the map's own cells, each halving "
+                 "the position and heading steps (0: verify on the pose lattice)")
+      ->transform(whole_range(0, 8))
       ->capture_default_str();
   cmd.add_option_function<double>(
          "--max-memory", [&c](double mb) { c.memory_limit = static_cast<std::size_t>(mb * 1e6); },
@@ -124,6 +131,23 @@ void add_globloc_command(CLI::App& app) {
                   "for any count")
       ->transform(whole_range(0, 256))
       ->capture_default_str();
+  cmd->add_option("--track", o->track,
+                  "pog: localize from a sequence: from each selected scan, fuse up to N scans "
+                  "with odometry until the answer is unambiguous (0: each scan on its own)")
+      ->transform(whole_range(0, 1000))
+      ->capture_default_str();
+  cmd->add_option_function<std::vector<double>>(
+         "--track-step",
+         [o](const std::vector<double>& v) {
+           o->track_step_position = v[0];
+           o->track_step_heading = v[1] * std::numbers::pi / 180.0;
+         },
+         "with --track: fuse a scan once odometry moved the sensor METRES or turned it DEGREES "
+         "since the scan fused before")
+      ->expected(2)
+      ->type_name("METRES DEGREES")
+      ->check(non_negative())
+      ->default_str("0.5 15");
   add_global_method_option(*cmd, o->method);
   add_global_loc_options(*cmd, o->config);
   cmd->add_option("--reference", o->reference,

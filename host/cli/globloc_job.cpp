@@ -89,17 +89,19 @@ std::optional<core::Pose2> reference_at(const std::vector<slam::TimedPose>& refe
 }
 
 void write_poses(const std::filesystem::path& file, const std::vector<GlobLocScan>& scans,
-                 localization::GlobalMethod method) {
+                 localization::GlobalMethod method, bool track) {
   io::write_file_atomically(file, [&](std::ostream& out) {
     const bool pose_grid = method == localization::GlobalMethod::pose_grid;
-    out << "# t x y theta score ambiguous (s, m, m, rad, -, 0/1): the robot pose of each localized "
-           "scan, from no prior, by "
+    out << (track ? "# t x y theta score ambiguous scans t_first (s, m, m, rad, -, 0/1, -, s): the "
+                    "robot pose at the last scan fused, from no prior at scan time t_first, by "
+                  : "# t x y theta score ambiguous (s, m, m, rad, -, 0/1): the robot pose of each "
+                    "localized scan, from no prior, by ")
         << global_method_name(method) << "; score: "
         << (pose_grid ? "the best hypothesis's S_eps index sum over the whole scan; ambiguous: a "
                         "second hypothesis nearly as good; then x y theta score of the next "
                         "hypotheses (--hypotheses)"
                       : "the best cell's posterior; ambiguous: 0 (the baselines do not tell)")
-        << '\n';
+        << (track ? "; scans: how many were fused" : "") << '\n';
     const auto pose = [&](std::ostream& o, const core::Pose2& p, double score) {
       o << io::format_number(p.x) << ' ' << io::format_number(p.y) << ' '
         << io::format_number(p.theta) << ' ' << io::format_number(score);
@@ -108,6 +110,7 @@ void write_poses(const std::filesystem::path& file, const std::vector<GlobLocSca
       out << io::format_number(s.t) << ' ';
       pose(out, s.estimate.robot, s.estimate.score);
       out << ' ' << (s.ambiguous ? 1 : 0);
+      if (track) out << ' ' << s.scans_fused << ' ' << io::format_number(s.first_t);
       for (std::size_t h = 1; h < s.hypotheses.size(); ++h) {
         out << ' ';
         pose(out, s.hypotheses[h].robot, s.hypotheses[h].score);
@@ -222,6 +225,44 @@ void write_pose_grid_png(const std::filesystem::path& file,
   io::write_png(file, image);
 }
 
+struct TrackResult {
+  localization::PoseSearchResult found;
+  std::size_t last = 0;   // the last scan fused
+  std::size_t scans = 0;  // scans fused
+};
+
+// Localization from a sequence: scan `first` and the scans after it that odometry puts a step
+// away from the one fused before, fused until the answer is unambiguous or o.track are fused.
+TrackResult track_from(const localization::LocalizationMap& map, const core::Log& log,
+                       std::size_t first, std::span<const localization::RangeReading> screening,
+                       std::span<const localization::RangeReading> verification,
+                       const localization::PoseSearchOptions& search, const GlobLocJobOptions& o,
+                       localization::PoseScores* scores) {
+  std::optional<localization::PoseTracker> tracker;
+  naming_flags(global_loc_flags(), [&] { tracker.emplace(map, search, o.track); });
+  tracker->add_scan(screening, verification, core::Pose2{});
+  TrackResult r{tracker->search(log.scans[first].sensor_mount), first, 1};
+  for (std::size_t j = first + 1;
+       r.found.ambiguous && tracker->scans() < o.track && j < log.scans.size(); ++j) {
+    const core::Pose2 motion =
+        core::relative(log.scans[r.last].sensor_pose(), log.scans[j].sensor_pose());
+    if (std::hypot(motion.x, motion.y) < o.track_step_position &&
+        std::abs(core::wrap_angle(motion.theta)) < o.track_step_heading)
+      continue;
+    const std::vector<localization::RangeReading> readings =
+        localization::readings_of(log.scans[j], o.beams, o.config.max_range);
+    if (readings.empty()) continue;
+    tracker->add_scan(readings,
+                      localization::readings_of(log.scans[j], o.verify_beams, o.config.max_range),
+                      motion);
+    r.last = j;
+    r.found = tracker->search(log.scans[j].sensor_mount);
+  }
+  r.scans = tracker->scans();
+  if (scores) *scores = tracker->fused_scores();
+  return r;
+}
+
 }  // namespace
 
 const char* global_method_name(localization::GlobalMethod method) {
@@ -248,6 +289,11 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
     bad_option("--reference-trajectory", "is given with --reference: one reference a run");
   if (!(o.position_tolerance > 0.0) || !(o.heading_tolerance > 0.0))
     bad_option("--tolerance", "must be positive");
+  if (o.track > 0 && o.method != localization::GlobalMethod::pose_grid)
+    bad_option("--track", "fuses scans with the pose grid only (--method pog)");
+  if (!(o.track_step_position >= 0.0) || !(o.track_step_heading >= 0.0) ||
+      !std::isfinite(o.track_step_position) || !std::isfinite(o.track_step_heading))
+    bad_option("--track-step", "must be finite and non-negative");
   std::optional<std::vector<slam::TimedPose>> reference;
   const std::optional<std::filesystem::path>& reference_file =
       o.reference ? o.reference : o.reference_trajectory;
@@ -315,12 +361,22 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
     for (std::size_t n = 0; n < jobs.size(); ++n) {
       const core::Scan& scan = log.scans[jobs[n].index];
       GlobLocScan s;
-      s.index = jobs[n].index;
-      s.t = scan.t;
+      s.index = s.first_index = jobs[n].index;
+      s.t = s.first_t = scan.t;
       s.readings = jobs[n].readings.size();
       const auto start = Clock::now();
       localization::PoseScores* scores = n == 0 ? &first_scores : nullptr;
-      if (o.method == localization::GlobalMethod::pose_grid) {
+      if (o.method == localization::GlobalMethod::pose_grid && o.track > 0) {
+        const TrackResult tracked = track_from(*lmap, log, jobs[n].index, jobs[n].readings,
+                                               jobs[n].verification, search, o, scores);
+        s.index = tracked.last;
+        s.t = log.scans[tracked.last].t;
+        s.scans_fused = tracked.scans;
+        s.estimate = tracked.found.estimate;
+        s.hypotheses = tracked.found.hypotheses;
+        s.ambiguous = tracked.found.ambiguous;
+        r.ambiguous += s.ambiguous ? 1 : 0;
+      } else if (o.method == localization::GlobalMethod::pose_grid) {
         localization::PoseSearchResult found = localization::search_pose_grid(
             *lmap, jobs[n].readings, jobs[n].verification, scan.sensor_mount, search, scores);
         s.estimate = found.estimate;
@@ -345,6 +401,13 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
                     std::abs(core::wrap_angle(s.estimate.robot.theta - s.reference->theta)) <=
                         o.heading_tolerance;
           r.found += s.found ? 1 : 0;
+          if (!s.found && o.method == localization::GlobalMethod::pose_grid && o.track == 0 &&
+              o.config.refine_levels > 0)
+            s.reference_score =
+                localization::refine_pose(*lmap, jobs[n].readings, jobs[n].verification,
+                                          core::compose(*s.reference, scan.sensor_mount),
+                                          scan.sensor_mount)
+                    .score;
         }
       }
       r.scans.push_back(s);
@@ -375,6 +438,9 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         {"verified", search.verified},
         {"ambiguity_levels", search.ambiguity_levels},
         {"threads", search.threads},
+        {"refine_levels", c.refine_levels},
+        {"track", o.track},
+        {"track_step", {o.track_step_position, o.track_step_heading * 180.0 / std::numbers::pi}},
         {"max_memory_mb", static_cast<double>(c.memory_limit) / 1e6}}},
       {"pose_grid",
        {{"width", lmap->width()},
@@ -392,6 +458,24 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
       {"map_seconds", r.map_seconds},
       {"seconds", r.seconds},
       {"seconds_per_scan", r.seconds / static_cast<double>(r.scans.size())}};
+  if (o.track > 0) {
+    // How many scans the answers took: a user's robot waits that long.
+    std::vector<std::size_t> fused;
+    std::size_t unambiguous_scans = 0;
+    for (const GlobLocScan& s : r.scans) {
+      fused.push_back(s.scans_fused);
+      unambiguous_scans += s.ambiguous ? 0 : 1;
+    }
+    std::sort(fused.begin(), fused.end());
+    double total = 0.0;
+    for (const std::size_t f : fused) total += double(f);
+    r.metrics["track"] = {{"localizations", fused.size()},
+                          {"unambiguous", unambiguous_scans},
+                          {"mean_scans", total / double(fused.size())},
+                          {"median_scans", fused[fused.size() / 2]},
+                          {"most_scans", fused.back()}};
+    r.metrics["seconds_per_localization"] = r.metrics["seconds_per_scan"];
+  }
   if (reference) {
     std::vector<double> position_errors;
     for (const GlobLocScan& s : r.scans)
@@ -417,6 +501,8 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
     for (const GlobLocScan& s : r.scans)
       if (s.reference && !s.found)
         misses.push_back({{"scan", s.index},
+                          {"first_scan", s.first_index},
+                          {"scans_fused", s.scans_fused},
                           {"t", s.t},
                           {"position_error_m", std::hypot(s.estimate.robot.x - s.reference->x,
                                                           s.estimate.robot.y - s.reference->y)},
@@ -424,7 +510,21 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
                            std::abs(core::wrap_angle(s.estimate.robot.theta - s.reference->theta)) *
                                180.0 / std::numbers::pi},
                           {"ambiguous", s.ambiguous}});
+    std::size_t map_prefers_answer = 0;
+    for (std::size_t m = 0, i = 0; i < r.scans.size(); ++i) {
+      const GlobLocScan& s = r.scans[i];
+      if (!s.reference || s.found) continue;
+      if (s.reference_score) {
+        misses[m]["score"] = s.estimate.score;
+        misses[m]["reference_score"] = *s.reference_score;
+        map_prefers_answer += s.estimate.score > double(*s.reference_score) ? 1 : 0;
+      }
+      ++m;
+    }
     ref["misses"] = misses;
+    if (o.method == localization::GlobalMethod::pose_grid && o.track == 0 &&
+        o.config.refine_levels > 0)
+      ref["misses_where_the_map_prefers_the_answer"] = map_prefers_answer;
     std::size_t ambiguous_matched = 0, ambiguous_found = 0;
     for (const GlobLocScan& s : r.scans)
       if (s.reference && s.ambiguous) ++ambiguous_matched, ambiguous_found += s.found ? 1 : 0;
@@ -434,7 +534,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   }
 
   std::filesystem::create_directories(o.out);
-  write_poses(o.out / "poses.txt", r.scans, o.method);
+  write_poses(o.out / "poses.txt", r.scans, o.method, o.track > 0);
   write_pose_grid_png(o.out / "pose_grid.png", *lmap, first_scores, map, r.scans.front());
   io::write_file_atomically(o.out / "metrics.json", r.metrics.dump(2) + "\n");
   return r;

@@ -35,12 +35,22 @@ struct GlobLocJobOptions {
   localization::GlobalMethod method = localization::GlobalMethod::pose_grid;
   localization::GlobalLocConfig config;
   localization::PoseSearchOptions search;  // threads: 0 is every core
+  // Localization from a sequence (pog only): from each selected scan, fuse up to `track` scans
+  // (0: each scan on its own), stopping at the first unambiguous answer. A scan is fused once
+  // odometry has moved the sensor track_step_position or turned it track_step_heading since the
+  // one fused before it (chosen by hand: far enough that a scan sees something new).
+  std::size_t track = 0;
+  double track_step_position = 0.5;                             // m
+  double track_step_heading = 15.0 * std::numbers::pi / 180.0;  // rad
   bool progress = true;
 };
 
 struct GlobLocScan {
-  std::size_t index = 0;  // in the log
-  double t = 0.0;
+  std::size_t index = 0;        // in the log; with --track, the last scan fused (the answer's)
+  std::size_t first_index = 0;  // the scan the localization started from
+  std::size_t scans_fused = 1;  // with --track: how many scans it took
+  double t = 0.0;               // of scan `index`
+  double first_t = 0.0;         // of scan `first_index`
   std::size_t readings = 0;
   localization::GlobalEstimate estimate;
   std::vector<localization::PoseHypothesis> hypotheses;  // the pose grid's, best first
@@ -48,6 +58,10 @@ struct GlobLocScan {
   double seconds = 0.0;
   std::optional<core::Pose2> reference;  // the reference log's pose at the same time
   bool found = false;                    // within the tolerances of the reference pose
+  // A pose grid's miss, refined: the score of the reference pose refined as the search refines
+  // its hypotheses (refine_pose), single scans only. Below the answer's: the map disagrees with
+  // the reference there.
+  std::optional<std::int32_t> reference_score;
 };
 
 struct GlobLocJobResult {

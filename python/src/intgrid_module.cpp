@@ -854,6 +854,8 @@ void bind_localization(py::module_& m) {
       .def_readwrite("z_max", &GlobalLocConfig::z_max)
       .def_readwrite("z_rand", &GlobalLocConfig::z_rand)
       .def_readwrite("lambda_short", &GlobalLocConfig::lambda_short)
+      .def_readwrite("refine_levels", &GlobalLocConfig::refine_levels,
+                     "levels of the hypotheses' refinement on the map's cells (0: none)")
       .def("check", &localization::check_global_loc_config,
            "Raises ValueError naming a bad field.");
 

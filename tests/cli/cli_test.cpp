@@ -937,6 +937,50 @@ TEST_F(Cli, GlobLocWritesPosesPictureAndMetricsAndScoresAgainstAReference) {
   }
 }
 
+// --track: from each selected scan the scans after it are fused until the answer is
+// unambiguous; poses.txt adds how many it took and when it started, the same on any thread count.
+TEST_F(Cli, GlobLocTrackFusesScansAndSaysHowManyItTook) {
+  const fs::path room = write_globloc_room(dir_);
+  const fs::path sim = dir_ / "sim";
+  ASSERT_EQ(run("simulate --out " + sim.string() + " --world " + room.string() +
+                " --scans 12 --seed 3 --noise 0.01")
+                .status,
+            0);
+  for (const char* threads : {"1", "3"}) {
+    const fs::path out = dir_ / (std::string("track_") + threads);
+    const CliRun r = run("globloc --map " + room.string() + " --log " + (sim / "sim.log").string() +
+                         " --out " + out.string() + " --reference " + (sim / "truth.log").string() +
+                         " --scans 0:5 --pose-cell 0.1 --headings 64 --beams 20 --track 4 " +
+                         "--track-step 0.05 5 --ambiguity-levels 20 --threads " + threads);
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::vector<std::string> lines = lines_of(file_text(out / "poses.txt"));
+    ASSERT_EQ(lines.size(), 7u) << file_text(out / "poses.txt");
+    EXPECT_NE(lines[0].find("scans t_first"), std::string::npos) << lines[0];
+    std::size_t fused_more = 0;
+    for (std::size_t i = 1; i < lines.size(); ++i) {
+      std::istringstream fields(lines[i]);
+      double t = 0, x = 0, y = 0, theta = 0, score = 0, ambiguous = 0, scans = 0, t_first = 0;
+      ASSERT_TRUE(fields >> t >> x >> y >> theta >> score >> ambiguous >> scans >> t_first)
+          << lines[i];
+      EXPECT_NEAR(t_first, 1e9 + 0.2 * static_cast<double>(i - 1), 1e-6) << lines[i];
+      EXPECT_GE(scans, 1.0);
+      EXPECT_LE(scans, 4.0);
+      // A scan is fused after the first only while the answer is ambiguous; each fused scan
+      // is a later one.
+      EXPECT_TRUE(scans == 4.0 || ambiguous == 0.0) << lines[i];
+      EXPECT_GE(t, t_first + 0.2 * (scans - 1) - 1e-6) << lines[i];
+      fused_more += scans > 1.0 ? 1 : 0;
+    }
+    // --ambiguity-levels 20 calls nearly every answer ambiguous: sequences are fused.
+    EXPECT_GT(fused_more, 0u);
+    const std::string metrics = file_text(out / "metrics.json");
+    EXPECT_NE(metrics.find("\"track\""), std::string::npos);
+    EXPECT_NE(metrics.find("\"mean_scans\""), std::string::npos);
+    EXPECT_NE(r.output.find("\"matched\": 6"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(file_text(dir_ / "track_1" / "poses.txt"), file_text(dir_ / "track_3" / "poses.txt"));
+}
+
 TEST_F(Cli, GlobLocRefusesBadInputsNamingFileAndField) {
   const fs::path room = write_globloc_room(dir_);
   const fs::path log = write("room.log", "RLASER 4 -0.5 0.3 10 1.0 1.2 1.1 1.3" + kScanTail +
@@ -1159,6 +1203,11 @@ TEST_F(Cli, EveryBadInputExitsTwoNamingTheFlagOrTheFile) {
       {globloc + " --method best", "--method", "globloc"},
       {globloc + " --every 0", "--every", "globloc"},
       {globloc + " --beams -1", "--beams", "globloc"},
+      {globloc + " --track 2 --method markov", "--track", ""},
+      {globloc + " --track 1001", "--track", "globloc"},
+      {globloc + " --track 2 --track-step -1 5", "--track-step", "globloc"},
+      {globloc + " --refine-levels 9", "--refine-levels", "globloc"},
+      {globloc + " --headings 4096 --refine-levels 5", "--refine-levels", ""},
       {globloc + " --scans 5:2", "--scans", ""},
       {"globloc --map " + missing + " --log " + log.string() + " --out " + out, missing, ""},
       {globloc + " --reference " + missing, missing, ""},

@@ -11,17 +11,16 @@
 
 #include "intgrid/core/failure.hpp"
 #include "intgrid/core/map_distance.hpp"
-#include "intgrid/core/narrow_ism.hpp"
 #include "intgrid/core/parallel.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/core/sensor_model.hpp"
+#include "intgrid/localization/claim_table.hpp"
+#include "search_support.hpp"
 
 namespace intgrid::localization {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// The ISM's window past z: beyond z + 8 sigma it is 1/2 to 1e-14 (ism_cells_for_reading).
-constexpr double kIsmWindowSigmas = 8.0;
 
 bool finite_positive(double v) {
   return std::isfinite(v) && v > 0.0;
@@ -98,6 +97,10 @@ void check_global_loc_config(const GlobalLocConfig& c) {
   weight(c.z_max, "z_max");
   weight(c.z_rand, "z_rand");
   positive(c.lambda_short, "lambda_short");
+  if (c.refine_levels < 0 || c.refine_levels > 8 || (c.headings << c.refine_levels) > 65536)
+    core::fail<std::invalid_argument>(
+        "refine_levels must be 0..8 with headings 2^refine_levels at most 65536, got " +
+        std::to_string(c.refine_levels));
 }
 
 std::vector<RangeReading> readings_of(const core::Scan& scan, int beams, double max_range) {
@@ -112,6 +115,16 @@ std::vector<RangeReading> readings_of(const core::Scan& scan, int beams, double 
   for (std::size_t i = 0; i < b; ++i) out.push_back(valid[i * n / b]);
   return out;
 }
+
+namespace detail {
+std::vector<RangeReading> usable_readings(std::span<const RangeReading> readings,
+                                          double max_range) {
+  std::vector<RangeReading> used;
+  for (const RangeReading& r : readings)
+    if (usable(r, max_range)) used.push_back(r);
+  return used;
+}
+}  // namespace detail
 
 // ---------------------------------------------------------------------------------------------
 // The map
@@ -172,15 +185,19 @@ LocalizationMap::LocalizationMap(const core::ProbabilityGrid& map, double occupi
 
   // What the tables and one scan's scores will take, checked before they are allocated: the
   // first hits and index sums per candidate pose cell, the line offsets, at most one source per
-  // occupied cell and direction, the per-position indices, the distance transform.
+  // occupied cell and direction, the per-position indices, the distance transform, the fine map.
   const auto headings = std::size_t(config_.headings);
   const std::size_t occupied_cells =
       static_cast<std::size_t>(std::count(class_.begin(), class_.end(), PoseCellClass::occupied));
-  const double bytes = double(free_cells_) * double(headings) * double(kBytesPerCandidatePoseCell) +
-                       double(headings) * (double(std::max(width_, height_)) * 4.0 +
-                                           double(occupied_cells) * double(sizeof(Source))) +
-                       double(wh) * double(sizeof(std::int32_t)) + double(free_cells_) * 4.0 +
-                       double(g.size()) * double(sizeof(double));
+  const double bytes =
+      double(free_cells_) * double(headings) * double(kBytesPerCandidatePoseCell) +
+      double(headings) * (double(std::max(width_, height_)) * 4.0 +
+                          double(occupied_cells) * double(sizeof(Source))) +
+      double(wh) * double(sizeof(std::int32_t)) + double(free_cells_) * 4.0 +
+      double(g.size()) * double(sizeof(double)) +
+      (config_.refine_levels > 0
+           ? double(FineMap::bytes_for(g, config_.headings << config_.refine_levels))
+           : 0.0);
   if (bytes > double(config_.memory_limit))
     refuse_memory("a pose grid of " + std::to_string(width_) + " x " + std::to_string(height_) +
                       " cells x " + std::to_string(headings) + " heading bins (" +
@@ -225,6 +242,9 @@ LocalizationMap::LocalizationMap(const core::ProbabilityGrid& map, double occupi
   std::vector<double> f = core::squared_distance_transform(occupied, g.width, g.height);
   for (double& e : f) e = std::sqrt(e) * r;  // infinity stays infinity
   occupied_distance_ = std::move(f);
+  if (config_.refine_levels > 0)
+    fine_ =
+        FineMap(map, occupied_threshold, free_threshold, config_.headings << config_.refine_levels);
 }
 
 void LocalizationMap::build_direction(int d) {
@@ -343,8 +363,6 @@ double LocalizationMap::distance_to_occupied(double x, double y) const {
   return occupied_distance_[map_geometry_.index(a, b)];
 }
 
-constexpr double kLeastLogOdds = 1e-9;
-
 double LocalizationMap::effective_sigma(double z) const {
   return std::hypot(config_.sigma, config_.pose_res, heading_bin() * z);
 }
@@ -352,53 +370,18 @@ double LocalizationMap::effective_sigma(double z) const {
 template <class Score>
 BasicReadingClaims<Score> LocalizationMap::make_claims(const RangeReading& reading) const {
   check_reading(reading, config_.max_range);
-  const double z = reading.range;
   BasicReadingClaims<Score> out;
-  out.sigma_eff = effective_sigma(z);
+  out.sigma_eff = effective_sigma(reading.range);
   out.shift = bearing_shift(reading.bearing, heading_bin(), config_.headings);
-  const core::GaussianBeamModel model{out.sigma_eff, 0.0};
   // No first hit is farther than the longest line: longer tables would only hold unused claims.
   const std::size_t longest = std::size_t(std::max(width_, height_));
   std::vector<std::vector<Score>> group_claims(group_step_.size());
   std::vector<Score> group_top(group_step_.size(), 0);
-  std::vector<double> ism;
   for (std::size_t gi = 0; gi < group_step_.size(); ++gi) {
-    const double step = group_step_[gi];
-    const auto cells =
-        static_cast<std::size_t>(std::ceil((z + kIsmWindowSigmas * out.sigma_eff) / step)) + 1;
-    ism.resize(cells);
-    core::narrow_ism(model, z, step, ism);
-    std::vector<Score>& table = group_claims[gi];
-    table.assign(cells + 1, 0);
-    Score top = 0;
-    // The reading's own S_eps step: lambda = logit(Pmax) / seps_levels, so its strongest claim
-    // is seps_levels however broad its ISM; indices to the nearest step. A reading whose ISM
-    // is broad (far, so sigma_eff is wide) still says where the robot cannot be and where it
-    // may be, and counts as much as a near one.
-    // Past some 15 m with 64 headings Pmax is 1/2 to within rounding (1e-14): the floor on
-    // lambda rounds such a reading's positive claims to 0, so by rule 2 it claims nothing,
-    // instead of amplifying rounding noise to seps_levels.
-    const double lambda =
-        std::max(core::logit(*std::max_element(ism.begin(), ism.end())), kLeastLogOdds) /
-        config_.seps_levels;
-    for (std::size_t k = 1; k <= cells; ++k) {
-      const double n = std::clamp(core::logit(ism[k - 1]) / lambda, -double(config_.seps_levels),
-                                  double(config_.seps_levels));
-      if constexpr (std::is_integral_v<Score>)
-        table[k] = static_cast<Score>(std::lround(n));
-      else
-        table[k] = n * lambda;
-      top = std::max(top, table[k]);
-    }
-    const Score veto_bound = std::is_integral_v<Score> ? Score(config_.veto_levels)
-                                                       : Score(config_.veto_levels * lambda);
-    const Score veto = std::min(top, veto_bound);
-    for (Score& n : table) n = std::clamp(n, -veto, top);  // rule 2, tightened
-    std::size_t size = std::min(table.size(), longest + 1);
-    while (size > 1 && table[size - 1] == 0) --size;
-    table.resize(size);
-    table.push_back(0);
-    group_top[gi] = top;
+    ClaimTable<Score> table = claim_table<Score>(reading.range, out.sigma_eff, group_step_[gi],
+                                                 config_.seps_levels, config_.veto_levels, longest);
+    group_claims[gi] = std::move(table.claim);
+    group_top[gi] = table.top;
   }
   out.claim.resize(std::size_t(config_.headings));
   out.n_top.resize(std::size_t(config_.headings));
@@ -456,6 +439,19 @@ void LocalizationMap::add_reading_dense(const BasicReadingClaims<Score>& claims,
   }
 }
 
+namespace {
+// out[c] += claim[min(hit[c], past)]: the screening's inner loop. Where the processor has AVX2
+// the compiler vectorizes the minimum and the additions around the table reads; the sums are the
+// same integers either way.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void add_claims(std::int32_t* __restrict out, const std::uint16_t* __restrict hit, std::size_t n,
+                const std::int32_t* __restrict claim, std::uint32_t past) {
+  for (std::size_t c = 0; c < n; ++c) out[c] += claim[std::min<std::uint32_t>(hit[c], past)];
+}
+}  // namespace
+
 void LocalizationMap::add_readings_candidates(std::span<const ReadingClaims> claims,
                                               std::span<std::int32_t> scores, int k_begin,
                                               int k_end) const {
@@ -478,8 +474,7 @@ void LocalizationMap::add_readings_candidates(std::span<const ReadingClaims> cla
         const std::int32_t* claim = r.claim[d].data();
         const std::size_t past = r.claim[d].size() - 1;
         const std::uint16_t* hit = directions_[d].first_hit.data();
-        for (std::size_t c = begin; c < end; ++c)
-          out[c] += claim[std::min<std::size_t>(hit[c], past)];
+        add_claims(out + begin, hit + begin, end - begin, claim, std::uint32_t(past));
       }
     }
   }
@@ -619,207 +614,7 @@ GlobalEstimate mean_of_best(const LocalizationMap& map, IsBest&& is_best) {
   return e;
 }
 
-// A candidate-layout grid laid out as LocalizationMap::index(), `outside` on non-candidates.
-template <class Score>
-std::vector<Score> in_pose_layout(const LocalizationMap& map, std::span<const Score> grid,
-                                  Score outside) {
-  std::vector<Score> out(map.pose_cells(), outside);
-  for (std::size_t q = 0; q < grid.size(); ++q) {
-    const auto [i, j, k] = map.candidate_cell(q);
-    out[map.index(i, j, k)] = grid[q];
-  }
-  return out;
-}
-
-core::Pose2 robot_of(const core::Pose2& sensor, const core::Pose2& sensor_mount) {
-  core::Pose2 robot = core::compose(sensor, core::relative(sensor_mount, core::Pose2{}));
-  robot.theta = core::wrap_angle(robot.theta);
-  return robot;
-}
-
-std::vector<RangeReading> usable_readings(std::span<const RangeReading> readings,
-                                          double max_range) {
-  std::vector<RangeReading> used;
-  for (const RangeReading& r : readings)
-    if (usable(r, max_range)) used.push_back(r);
-  return used;
-}
-
-std::vector<ReadingClaims> claims_of(const LocalizationMap& map,
-                                     std::span<const RangeReading> readings, int threads) {
-  std::vector<ReadingClaims> out(readings.size());
-  core::run_parts(readings.size(), threads,
-                  [&](std::size_t r) { out[r] = map.claims(readings[r]); });
-  return out;
-}
-
-// A candidate pose cell of the screening: element q = k * candidates + c of the sums.
-struct ScoredCell {
-  std::int32_t score;
-  std::size_t q;
-};
-// Best first; equal scores in layout order, so the order does not depend on the threads.
-bool better(const ScoredCell& a, const ScoredCell& b) {
-  return a.score != b.score ? a.score > b.score : a.q < b.q;
-}
-
-// The screening cells the hypotheses are drawn from: the best ones, at most about kPool of them
-// (all cells of the score levels that fit, from the best down; at least the best level's first
-// kPool).
-constexpr std::size_t kPool = std::size_t{1} << 16;
-
-std::vector<ScoredCell> best_cells(std::span<const std::int32_t> sums) {
-  const std::int32_t best = *std::max_element(sums.begin(), sums.end());
-  // Levels below the best, counted over a window: the pool never reaches past it.
-  constexpr std::int64_t kWindow = 1 << 16;
-  std::vector<std::size_t> count(std::size_t(kWindow), 0);
-  for (const std::int32_t v : sums) {
-    const std::int64_t below = std::int64_t(best) - v;
-    if (below < kWindow) ++count[std::size_t(below)];
-  }
-  std::int64_t levels = 1;  // the best level always
-  std::size_t taken = count[0];
-  while (levels < kWindow && taken + count[std::size_t(levels)] <= kPool)
-    taken += count[std::size_t(levels++)];
-  const std::int64_t floor = std::int64_t(best) - (levels - 1);
-  std::vector<ScoredCell> pool;
-  pool.reserve(std::min(taken, kPool));
-  for (std::size_t q = 0; q < sums.size() && pool.size() < kPool; ++q)
-    if (sums[q] >= floor) pool.push_back({sums[q], q});
-  std::sort(pool.begin(), pool.end(), better);
-  return pool;
-}
-
-double heading_gap(double a, double b) {
-  return std::abs(core::wrap_angle(a - b));
-}
-
 }  // namespace
-
-void check_pose_search_options(const PoseSearchOptions& o) {
-  if (o.hypotheses < 1 || o.hypotheses > 1000)
-    core::fail<std::invalid_argument>("hypotheses must be 1..1000, got " +
-                                      std::to_string(o.hypotheses));
-  if (o.verified < 1 || o.verified > 1000)
-    core::fail<std::invalid_argument>("verified must be 1..1000, got " +
-                                      std::to_string(o.verified));
-  if (!(o.separation >= 0.0) || !std::isfinite(o.separation))
-    core::fail<std::invalid_argument>("separation must be a non-negative finite number");
-  if (!(o.separation_heading >= 0.0) || !std::isfinite(o.separation_heading))
-    core::fail<std::invalid_argument>("separation_heading must be a non-negative finite number");
-  if (!(o.ambiguity_levels >= 0.0) || !std::isfinite(o.ambiguity_levels))
-    core::fail<std::invalid_argument>("ambiguity_levels must be a non-negative finite number");
-  if (o.threads < 1 || o.threads > 256)
-    core::fail<std::invalid_argument>("threads must be 1..256, got " + std::to_string(o.threads));
-}
-
-PoseSearchResult search_pose_grid(const LocalizationMap& map,
-                                  std::span<const RangeReading> screening,
-                                  std::span<const RangeReading> verification,
-                                  const core::Pose2& sensor_mount, const PoseSearchOptions& options,
-                                  PoseScores* scores) {
-  check_pose_search_options(options);
-  const GlobalLocConfig& config = map.config();
-  const std::vector<RangeReading> screen = usable_readings(screening, config.max_range);
-  const std::vector<RangeReading> verify = usable_readings(verification, config.max_range);
-  const std::vector<ReadingClaims> screen_claims = claims_of(map, screen, options.threads);
-
-  // Screening: every candidate pose cell, the headings split into contiguous parts.
-  const int headings = map.headings();
-  std::vector<std::int32_t> sums(map.candidate_cells(), 0);
-  const auto parts = std::size_t(std::min(options.threads, headings));
-  core::run_parts(parts, options.threads, [&](std::size_t p) {
-    const auto k_begin = static_cast<int>(std::size_t(headings) * p / parts);
-    const auto k_end = static_cast<int>(std::size_t(headings) * (p + 1) / parts);
-    map.add_readings_candidates(screen_claims, sums, k_begin, k_end);
-  });
-
-  // Hypotheses: the best cells, each `separation` from every better one.
-  const auto hypothesis_count = std::size_t(std::max(options.hypotheses, options.verified));
-  const auto pose_at = [&](std::size_t q) {
-    const auto [i, j, k] = map.candidate_cell(q);
-    return map.pose_of(i, j, k);
-  };
-  std::vector<ScoredCell> seeds;
-  for (const ScoredCell& cell : best_cells(sums)) {
-    const core::Pose2 p = pose_at(cell.q);
-    const bool apart = std::all_of(seeds.begin(), seeds.end(), [&](const ScoredCell& s) {
-      const core::Pose2 o = pose_at(s.q);
-      return std::hypot(p.x - o.x, p.y - o.y) >= options.separation ||
-             heading_gap(p.theta, o.theta) >= options.separation_heading;
-    });
-    if (apart) seeds.push_back(cell);
-    if (seeds.size() == hypothesis_count) break;
-  }
-
-  // Verification: the best `verified` seeds' neighbourhoods scored with the verification
-  // readings (the screening's claims when the two are the same readings).
-  const bool same = std::equal(screen.begin(), screen.end(), verify.begin(), verify.end(),
-                               [](const RangeReading& a, const RangeReading& b) {
-                                 return a.range == b.range && a.bearing == b.bearing;
-                               });
-  const std::vector<ReadingClaims> verify_claims =
-      same ? std::vector<ReadingClaims>{} : claims_of(map, verify, options.threads);
-  const std::vector<ReadingClaims>& vclaims = same ? screen_claims : verify_claims;
-  struct Ranked {
-    PoseHypothesis h;
-    std::size_t seed;
-  };
-  std::vector<Ranked> ranked;
-  const std::size_t verified = std::min(seeds.size(), std::size_t(options.verified));
-  for (std::size_t s = 0; s < verified; ++s) {
-    const auto [i0, j0, k0] = map.candidate_cell(seeds[s].q);
-    std::int32_t best = std::numeric_limits<std::int32_t>::min();
-    std::vector<std::array<int, 3>> tied;
-    for (int dk = -1; dk <= 1; ++dk)
-      for (int dj = -1; dj <= 1; ++dj)
-        for (int di = -1; di <= 1; ++di) {
-          const int i = i0 + di, j = j0 + dj, k = ((k0 + dk) % headings + headings) % headings;
-          if (i < 0 || j < 0 || i >= map.width() || j >= map.height()) continue;
-          const std::int32_t c = map.candidate_index(i, j);
-          if (c < 0) continue;
-          std::int32_t v = 0;
-          for (const ReadingClaims& r : vclaims) v += map.claim_at(r, std::size_t(c), k);
-          if (v > best) best = v, tied.clear();
-          if (v == best) tied.push_back({i, j, k});
-        }
-    double sx = 0.0, sy = 0.0, sc = 0.0, ss = 0.0;
-    for (const auto& [i, j, k] : tied) {
-      const core::Pose2 p = map.pose_of(i, j, k);
-      sx += p.x, sy += p.y, sc += std::cos(p.theta), ss += std::sin(p.theta);
-    }
-    const auto t = static_cast<double>(tied.size());
-    PoseHypothesis h;
-    h.sensor = {sx / t, sy / t, std::atan2(ss, sc)};
-    h.robot = robot_of(h.sensor, sensor_mount);
-    h.screening_score = seeds[s].score;
-    h.score = best;
-    h.ties = tied.size();
-    ranked.push_back({h, s});
-  }
-  std::sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
-    return a.h.score != b.h.score ? a.h.score > b.h.score : a.seed < b.seed;
-  });
-
-  PoseSearchResult result;
-  result.verification_readings = verify.size();
-  for (std::size_t r = 0; r < ranked.size() && r < std::size_t(options.hypotheses); ++r)
-    result.hypotheses.push_back(ranked[r].h);
-  result.ambiguous = ranked.size() >= 2 && double(ranked[0].h.score) - double(ranked[1].h.score) <=
-                                               options.ambiguity_levels * double(verify.size());
-  const PoseHypothesis& top = ranked.front().h;
-  result.estimate.sensor = top.sensor;
-  result.estimate.robot = top.robot;
-  result.estimate.score = top.score;
-  result.estimate.ties = top.ties;
-  result.estimate.readings_used = screen.size();
-  if (scores)
-    *scores = {GlobalMethod::pose_grid,
-               in_pose_layout(map, std::span<const std::int32_t>(sums),
-                              std::numeric_limits<std::int32_t>::min()),
-               {}};
-  return result;
-}
 
 GlobalEstimate localize_global(const LocalizationMap& map, std::span<const RangeReading> readings,
                                const core::Pose2& sensor_mount, GlobalMethod method,
@@ -827,7 +622,7 @@ GlobalEstimate localize_global(const LocalizationMap& map, std::span<const Range
   if (method == GlobalMethod::pose_grid)
     return search_pose_grid(map, readings, readings, sensor_mount, PoseSearchOptions{}, scores)
         .estimate;
-  const std::vector<RangeReading> used = usable_readings(readings, map.config().max_range);
+  const std::vector<RangeReading> used = detail::usable_readings(readings, map.config().max_range);
   MarkovLocalization markov(map, method);
   for (const RangeReading& r : used) markov.update(r);
   const std::span<const double> belief = markov.belief();
@@ -835,9 +630,9 @@ GlobalEstimate localize_global(const LocalizationMap& map, std::span<const Range
   GlobalEstimate estimate = mean_of_best(map, [&](std::size_t q) { return belief[q] == best; });
   estimate.score = best;
   estimate.readings_dropped = markov.dropped();
-  if (scores) *scores = {method, {}, in_pose_layout(map, belief, 0.0)};
+  if (scores) *scores = {method, {}, detail::in_pose_layout(map, belief, 0.0)};
   estimate.readings_used = used.size();
-  estimate.robot = robot_of(estimate.sensor, sensor_mount);
+  estimate.robot = detail::robot_of(estimate.sensor, sensor_mount);
   return estimate;
 }
 

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "intgrid/core/grid.hpp"
 #include "intgrid/core/seps.hpp"
 #include "intgrid/core/types.hpp"
+#include "intgrid/localization/fine_map.hpp"
 
 namespace intgrid::localization {
 
@@ -49,6 +51,10 @@ struct GlobalLocConfig {
   // The most a map's tables and one localization's scores may take (bytes): a LocalizationMap or
   // MarkovLocalization that would need more is refused before it allocates.
   std::size_t memory_limit = 1'000'000'000;
+  // Levels of the pose grid's refinement on the map's own cells, each halving the position and
+  // heading steps (0: none, the hypotheses stay on the pose lattice). Its finest heading bin is
+  // 2 pi / (headings 2^refine_levels).
+  int refine_levels = 4;
 };
 
 // Throws std::invalid_argument naming the offending field.
@@ -152,6 +158,9 @@ class LocalizationMap {
   }
   // What the tables and one scan's scores take (bytes), as the constructor checked it.
   std::size_t memory_bytes() const { return memory_bytes_; }
+  // The map at its own resolution with headings 2^refine_levels times finer, for the
+  // refinement; empty when refine_levels is 0.
+  const FineMap& fine() const { return fine_; }
   double heading_bin() const;  // 2 pi / headings (rad)
 
   // The digital lines of direction bin d.
@@ -231,6 +240,7 @@ class LocalizationMap {
   std::vector<double> group_step_;  // step length of each step group
   core::GridGeometry map_geometry_;
   std::vector<double> occupied_distance_;  // per map cell, metres
+  FineMap fine_;
 
   void build_direction(int d);
   template <class Score>
@@ -289,35 +299,40 @@ struct GlobalEstimate {
   std::size_t readings_dropped = 0;  // baselines: readings that zeroed every candidate
 };
 
-// One place a scan fits: the best pose cell of its neighbourhood, at least `separation` (or
+// One place a scan fits: the best pose of its neighbourhood, at least `separation` (or
 // `separation_heading`) from every better hypothesis.
 struct PoseHypothesis {
-  core::Pose2 sensor;                // mean of the cells tied at `score` around the hypothesis
+  // refine_levels > 0: the refined pose; else the mean of the pose cells tied at `score` around
+  // the hypothesis's cell.
+  core::Pose2 sensor;
   core::Pose2 robot;                 // the sensor pose stepped back by the mounting pose
   std::int32_t screening_score = 0;  // index sum of the screening readings at its screening cell
-  std::int32_t score = 0;            // index sum of the verification readings (the whole scan)
-  std::size_t ties = 1;              // cells tied at `score` in its neighbourhood
+  std::int32_t score = 0;            // index sum of the verification readings at `sensor`
+  std::size_t ties = 1;              // poses tied at `score` among those its last step compared
 };
 
 struct PoseSearchOptions {
   int hypotheses = 1;  // reported, best first
-  // The best screening hypotheses rescored with the verification readings over their
-  // neighbourhood (one cell and one heading bin around): the screening's few readings cannot
-  // tell apart places that look alike, the whole scan often can.
-  int verified = 8;
+  // The best screening hypotheses verified: refined on the map's own cells (refine_levels > 0)
+  // or rescored over their neighbourhood on the lattice (one cell and one heading bin around),
+  // with the verification readings. The screening's coarse claims cannot tell apart places that
+  // look alike at 5.6 degrees and 0.2 m; sharper claims and the whole scan often can.
+  int verified = 32;
   double separation = 1.0;             // m: two hypotheses differ by at least this in position,
   double separation_heading = 0.5236;  // or this in heading (rad, 30 degrees)
   // The answer is ambiguous when a second hypothesis scores within this many S_eps levels per
-  // verification reading of the best: a user should wait for another scan.
+  // verification reading of a scan (their mean over the fused scans when tracking) of the best:
+  // a user should wait for another scan.
   double ambiguity_levels = 0.5;
-  int threads = 1;  // the screening's headings split across threads; any count, the same result
+  int threads = 1;  // the screening's headings and the hypotheses split across threads; any
+                    // count, the same result
 };
 
 struct PoseSearchResult {
   GlobalEstimate estimate;                 // the best hypothesis
   std::vector<PoseHypothesis> hypotheses;  // best first, at most max(hypotheses, 1)
   bool ambiguous = false;
-  std::size_t verification_readings = 0;
+  std::size_t verification_readings = 0;  // over every fused scan
 };
 
 // Throws std::invalid_argument naming the field.
@@ -325,14 +340,63 @@ void check_pose_search_options(const PoseSearchOptions& options);
 
 // The pose grid's search: every candidate pose cell scored with the screening readings (the
 // candidate form), the best cells grouped into hypotheses `separation` apart, the best
-// `verified` of them rescored with the verification readings, ranked by that score. Readings
-// that are not usable are dropped, as localize_global does. `scores`, when given, receives the
-// screening scores in the PoseScores layout.
+// `verified` of them verified with the verification readings (refined, see GlobalLocConfig's
+// refine_levels), ranked by that score. Readings that are not usable are dropped, as
+// localize_global does. `scores`, when given, receives the screening scores in the PoseScores
+// layout.
 PoseSearchResult search_pose_grid(const LocalizationMap& map,
                                   std::span<const RangeReading> screening,
                                   std::span<const RangeReading> verification,
                                   const core::Pose2& sensor_mount, const PoseSearchOptions& options,
                                   PoseScores* scores = nullptr);
+
+// The refinement from a given sensor pose instead of a screening cell: the pose within the first
+// level's reach of it (0.3 m and one heading bin at the defaults) that the readings fit best, and
+// the verification readings' score there (screening_score 0). It checks a reference: when a
+// reference pose, so refined, scores below the search's answer, the map agrees with the answer,
+// not with the reference. Throws std::invalid_argument when refine_levels is 0 or the pose is
+// not finite; score is INT32_MIN when no pose there is free.
+PoseHypothesis refine_pose(const LocalizationMap& map, std::span<const RangeReading> screening,
+                           std::span<const RangeReading> verification, const core::Pose2& sensor,
+                           const core::Pose2& sensor_mount);
+
+// Global localization from a sequence of scans: the multi-measurement pose grid over time,
+// motion-compensated by odometry. Each scan's screening sums are kept; the fused grid scores a
+// pose cell at the latest scan with the sum, over the fused scans, of each scan's sums at the
+// pose cell where odometry puts the sensor then (its heading slice shifted by the rotated
+// translation and the turn, each rounded once from that scan's motion, so rounding does not
+// accumulate; a place off the candidates adds nothing). Hypotheses, their refinement and the
+// ambiguity test then run as search_pose_grid's, each pose scored over every fused scan.
+struct ScanEvidence;
+class PoseTracker {
+ public:
+  // Throws std::invalid_argument naming the field: bad options, max_scans outside 1..1000, or
+  // memory_limit when max_scans screening grids beside the map's tables would exceed the map's
+  // limit (refused before anything is allocated).
+  PoseTracker(const LocalizationMap& map, const PoseSearchOptions& options, std::size_t max_scans);
+  ~PoseTracker();
+  PoseTracker(PoseTracker&&) noexcept;
+  PoseTracker& operator=(PoseTracker&&) noexcept;
+
+  // Fuses one scan. `motion`: the sensor's pose at this scan in the frame of the sensor at the
+  // scan added before (from odometry; ignored for the first). Throws std::invalid_argument when
+  // max_scans are fused already or the motion is not finite.
+  void add_scan(std::span<const RangeReading> screening, std::span<const RangeReading> verification,
+                const core::Pose2& motion);
+  std::size_t scans() const { return evidence_.size(); }
+  std::size_t max_scans() const { return max_scans_; }
+  // Hypotheses for the sensor at the latest scan, from every fused scan. Requires a scan.
+  PoseSearchResult search(const core::Pose2& sensor_mount) const;
+  // The fused grid's sums in the PoseScores layout (non-candidates INT32_MIN). Requires a scan.
+  PoseScores fused_scores() const;
+
+ private:
+  const LocalizationMap* map_;
+  PoseSearchOptions options_;
+  std::size_t max_scans_;
+  std::vector<std::unique_ptr<ScanEvidence>> evidence_;
+  std::vector<core::Pose2> sensor_;  // each scan's sensor pose in the first scan's frame
+};
 
 // Localizes one set of readings from no prior. Readings that are not finite and positive, at or
 // past max_range, or with a non-finite bearing are not used. `scores`, when given, receives every
