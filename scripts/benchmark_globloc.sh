@@ -46,18 +46,19 @@ echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -
 python3 - "$out" "${runs[@]}" <<'PY'
 import json, sys
 out, runs = sys.argv[1], sys.argv[2:]
-print("| run | found | share | median error (m) | flagged ambiguous | misses flagged | map prefers the answer | scans fused (mean / most) | s a localization |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+print("| run | found | share | median error (m) | flagged ambiguous | misses flagged | pose grid scores the answer higher | endpoints fit the reference better | scans fused (mean / most) | s a localization |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 for r in runs:
     m = json.load(open(f"{out}/{r}/metrics.json"))
     ref = m["reference"]
     misses = ref["misses"]
     flagged = sum(1 for x in misses if x["ambiguous"])
-    prefers = ref.get("misses_where_the_map_prefers_the_answer")
+    prefers = ref.get("misses_where_the_pose_grid_scores_the_answer_higher")
+    fits = ref["misses_where_the_endpoints_fit_the_reference_better"]
     track = m.get("track")
     print(f"| {r} | {ref['within']} / {ref['matched']} | {100.0 * ref['within'] / ref['matched']:.1f}% | "
           f"{ref['median_position_error_m']:.3f} | {m['ambiguous_scans']} | {flagged} of {len(misses)} | "
-          f"{'' if prefers is None else f'{prefers} of {len(misses)}'} | "
+          f"{'' if prefers is None else f'{prefers} of {len(misses)}'} | {fits} of {len(misses)} | "
           f"{'' if not track else '%.2f / %d' % (track['mean_scans'], track['most_scans'])} | "
           f"{m['seconds_per_scan']:.3f} |")
 PY

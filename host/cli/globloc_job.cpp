@@ -225,6 +225,28 @@ void write_pose_grid_png(const std::filesystem::path& file,
   io::write_png(file, image);
 }
 
+// The share of a scan's usable readings whose endpoint, seen from the robot pose `robot`, lies
+// within kFitCells map cells of an occupied map cell: a check of a pose against the map that no
+// localizer's score enters, so that a miss can be told apart from a reference the map disagrees
+// with.
+constexpr double kFitCells = 1.5;
+
+double endpoint_fit(const localization::LocalizationMap& map, const core::Scan& scan,
+                    const core::Pose2& robot, double cell, double max_range) {
+  const std::vector<localization::RangeReading> readings =
+      localization::readings_of(scan, 0, max_range);
+  const core::Pose2 sensor = core::compose(robot, scan.sensor_mount);
+  std::size_t near = 0;
+  for (const localization::RangeReading& r : readings) {
+    const double a = sensor.theta + r.bearing;
+    near += map.distance_to_occupied(sensor.x + r.range * std::cos(a),
+                                     sensor.y + r.range * std::sin(a)) <= kFitCells * cell
+                ? 1
+                : 0;
+  }
+  return readings.empty() ? 0.0 : double(near) / double(readings.size());
+}
+
 struct TrackResult {
   localization::PoseSearchResult found;
   std::size_t last = 0;   // the last scan fused
@@ -401,6 +423,12 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
                     std::abs(core::wrap_angle(s.estimate.robot.theta - s.reference->theta)) <=
                         o.heading_tolerance;
           r.found += s.found ? 1 : 0;
+          if (!s.found) {
+            const double cell = map.grid.geometry.resolution;
+            s.endpoint_fit = {
+                endpoint_fit(*lmap, log.scans[s.index], s.estimate.robot, cell, o.config.max_range),
+                endpoint_fit(*lmap, log.scans[s.index], *s.reference, cell, o.config.max_range)};
+          }
           if (!s.found && o.method == localization::GlobalMethod::pose_grid && o.track == 0 &&
               o.config.refine_levels > 0)
             s.reference_score =
@@ -500,31 +528,38 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
     nlohmann::json misses = nlohmann::json::array();
     for (const GlobLocScan& s : r.scans)
       if (s.reference && !s.found)
-        misses.push_back({{"scan", s.index},
-                          {"first_scan", s.first_index},
-                          {"scans_fused", s.scans_fused},
-                          {"t", s.t},
-                          {"position_error_m", std::hypot(s.estimate.robot.x - s.reference->x,
-                                                          s.estimate.robot.y - s.reference->y)},
-                          {"heading_error_deg",
-                           std::abs(core::wrap_angle(s.estimate.robot.theta - s.reference->theta)) *
-                               180.0 / std::numbers::pi},
-                          {"ambiguous", s.ambiguous}});
-    std::size_t map_prefers_answer = 0;
+        misses.push_back(
+            {{"scan", s.index},
+             {"first_scan", s.first_index},
+             {"scans_fused", s.scans_fused},
+             {"t", s.t},
+             {"position_error_m",
+              std::hypot(s.estimate.robot.x - s.reference->x, s.estimate.robot.y - s.reference->y)},
+             {"heading_error_deg",
+              std::abs(core::wrap_angle(s.estimate.robot.theta - s.reference->theta)) * 180.0 /
+                  std::numbers::pi},
+             {"ambiguous", s.ambiguous},
+             {"endpoints_near_occupied",
+              {{"answer", s.endpoint_fit->first}, {"reference", s.endpoint_fit->second}}}});
+    std::size_t reference_fits_better = 0;
+    for (const GlobLocScan& s : r.scans)
+      if (s.endpoint_fit) reference_fits_better += s.endpoint_fit->second > s.endpoint_fit->first;
+    ref["misses_where_the_endpoints_fit_the_reference_better"] = reference_fits_better;
+    std::size_t scores_answer_higher = 0;
     for (std::size_t m = 0, i = 0; i < r.scans.size(); ++i) {
       const GlobLocScan& s = r.scans[i];
       if (!s.reference || s.found) continue;
       if (s.reference_score) {
         misses[m]["score"] = s.estimate.score;
         misses[m]["reference_score"] = *s.reference_score;
-        map_prefers_answer += s.estimate.score > double(*s.reference_score) ? 1 : 0;
+        scores_answer_higher += s.estimate.score > double(*s.reference_score) ? 1 : 0;
       }
       ++m;
     }
     ref["misses"] = misses;
     if (o.method == localization::GlobalMethod::pose_grid && o.track == 0 &&
         o.config.refine_levels > 0)
-      ref["misses_where_the_map_prefers_the_answer"] = map_prefers_answer;
+      ref["misses_where_the_pose_grid_scores_the_answer_higher"] = scores_answer_higher;
     std::size_t ambiguous_matched = 0, ambiguous_found = 0;
     for (const GlobLocScan& s : r.scans)
       if (s.reference && s.ambiguous) ++ambiguous_matched, ambiguous_found += s.found ? 1 : 0;

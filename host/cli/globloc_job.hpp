@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -62,6 +63,9 @@ struct GlobLocScan {
   // its hypotheses (refine_pose), single scans only. Below the answer's: the map disagrees with
   // the reference there.
   std::optional<std::int32_t> reference_score;
+  // A miss: the share of the scan's readings whose endpoints lie within 1.5 map cells of an
+  // occupied cell, at the answer and at the reference pose (no localizer's score enters it).
+  std::optional<std::pair<double, double>> endpoint_fit;
 };
 
 struct GlobLocJobResult {

@@ -920,6 +920,12 @@ TEST_F(Cli, GlobLocWritesPosesPictureAndMetricsAndScoresAgainstAReference) {
     ASSERT_EQ(t.status, 0) << t.output;
     EXPECT_NE(t.output.find("\"within\": " + std::to_string(within)), std::string::npos)
         << name << t.output;
+    // Each miss's endpoints fit the map better at the answer than at the shifted reference.
+    if (within == 0) {
+      EXPECT_NE(t.output.find("\"misses_where_the_endpoints_fit_the_reference_better\": 0"),
+                std::string::npos)
+          << t.output;
+    }
   }
   // A pose grid above --max-memory is refused, naming the option, before it is built.
   const CliRun big =

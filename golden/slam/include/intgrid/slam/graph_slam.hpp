@@ -39,7 +39,10 @@ struct GraphSlamConfig {
   struct Map {
     int seps_bits = 8;
     int seps_levels = 16;  // one reading's strongest occupied index
-    int empty_divisor = 1;
+    // A reading's empty indices are divided by this: a corridor's walls are crossed at grazing
+    // angles by many more rays than end on them, and with a divisor of 1 their empty evidence
+    // erases the walls from the maps (docs/results.md, SLAM). Chosen on Intel and ACES.
+    int empty_divisor = 4;
   } map;
 
   struct Submaps {
