@@ -76,6 +76,11 @@ void add_global_loc_options(CLI::App& cmd, localization::GlobalLocConfig& c) {
                  "the position and heading steps (0: verify on the pose lattice)")
       ->transform(whole_range(0, 8))
       ->capture_default_str();
+  cmd.add_option("--grazing-hits", c.grazing_hits,
+                 "pog: the refinement reads a reading whose ray enters a wall before its range, "
+                 "and which ends within a cell of it, as a hit at its range (a wall met at a "
+                 "grazing angle)")
+      ->capture_default_str();
   cmd.add_option_function<double>(
          "--max-memory", [&c](double mb) { c.memory_limit = static_cast<std::size_t>(mb * 1e6); },
          "the most the map's pose-grid tables and one localization's scores may take (MB): a "

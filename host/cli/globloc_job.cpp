@@ -467,6 +467,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         {"ambiguity_levels", search.ambiguity_levels},
         {"threads", search.threads},
         {"refine_levels", c.refine_levels},
+        {"grazing_hits", c.grazing_hits},
         {"track", o.track},
         {"track_step", {o.track_step_position, o.track_step_heading * 180.0 / std::numbers::pi}},
         {"max_memory_mb", static_cast<double>(c.memory_limit) / 1e6}}},

@@ -856,6 +856,9 @@ void bind_localization(py::module_& m) {
       .def_readwrite("lambda_short", &GlobalLocConfig::lambda_short)
       .def_readwrite("refine_levels", &GlobalLocConfig::refine_levels,
                      "levels of the hypotheses' refinement on the map's cells (0: none)")
+      .def_readwrite("grazing_hits", &GlobalLocConfig::grazing_hits,
+                     "the refinement reads a reading that ends on a wall its ray entered early "
+                     "(a grazing angle) as a hit at its range")
       .def("check", &localization::check_global_loc_config,
            "Raises ValueError naming a bad field.");
 

@@ -688,7 +688,8 @@ TEST_P(SearchThreads, SameResultForAnyThreadCount) {
                                        (bin * r.range) * (bin * r.range)),
                              config.seps_levels, config.veto_levels));
     for (const PoseHypothesis& h : one.hypotheses)
-      EXPECT_EQ(h.score, lmap.fine().score(claims, lmap.fine().fine_pose(h.sensor)));
+      EXPECT_EQ(h.score,
+                lmap.fine().score(claims, lmap.fine().fine_pose(h.sensor), config.grazing_hits));
     return;
   }
   // On the lattice the hypotheses' scores are the verification readings' index sums there (the

@@ -142,6 +142,27 @@ std::int64_t FineMap::first_hit(std::int64_t x, std::int64_t y, int d, std::int6
   return kNoHit;
 }
 
+bool FineMap::near_occupied(std::int64_t x, std::int64_t y, int d, std::int64_t distance) const {
+  const Direction& dir = directions_[std::size_t(d)];
+  // Along the major axis, distance / secant; along the minor, that times the slope.
+  const std::int64_t major = ((distance << (2 * kPositionBits - kDistanceBits)) / dir.secant);
+  const std::int64_t minor = (major * dir.slope) >> kSlopeBits;
+  const std::int64_t ex = x + (dir.x_major ? dir.sign * major : dir.sign * minor);
+  const std::int64_t ey = y + (dir.x_major ? dir.sign * minor : dir.sign * major);
+  const std::int64_t ix = ex >> kPositionBits, iy = ey >> kPositionBits;
+  if (ix < 0 || iy < 0 || ix >= geometry_.width || iy >= geometry_.height) return false;
+  return clearance(int(ix), int(iy)) <= 1;
+}
+
+bool FineMap::runs_along_a_wall(std::int64_t x, std::int64_t y, int d, std::int64_t from,
+                                std::int64_t to) const {
+  // One step a cell along the ray: each point within a cell of an occupied one.
+  constexpr std::int64_t kStep = std::int64_t{1} << kDistanceBits;
+  for (std::int64_t at = from; at < to; at += kStep)
+    if (!near_occupied(x, y, d, at)) return false;
+  return near_occupied(x, y, d, to);
+}
+
 FineClaims FineMap::claims(double z, double bearing, double sigma_eff, int seps_levels,
                            int veto_levels) const {
   FineClaims out;
@@ -150,10 +171,12 @@ FineClaims FineMap::claims(double z, double bearing, double sigma_eff, int seps_
   out.claim = claim_table<std::int32_t>(z, sigma_eff, geometry_.resolution, seps_levels,
                                         veto_levels, std::numeric_limits<std::size_t>::max() - 1)
                   .claim;
+  out.range = std::llround(std::ldexp(z / geometry_.resolution, kDistanceBits));
   return out;
 }
 
-std::int32_t FineMap::score(std::span<const FineClaims> readings, const FinePose& pose) const {
+std::int32_t FineMap::score(std::span<const FineClaims> readings, const FinePose& pose,
+                            bool grazing_hits) const {
   if (!is_free(pose)) return std::numeric_limits<std::int32_t>::min();
   std::int32_t sum = 0;
   constexpr std::int64_t kHalf = std::int64_t{1} << (kDistanceBits - 1);
@@ -161,7 +184,12 @@ std::int32_t FineMap::score(std::span<const FineClaims> readings, const FinePose
     const auto last = static_cast<std::int64_t>(r.claim.size()) - 1;
     const std::int64_t hit =
         first_hit(pose.x, pose.y, (pose.k + r.shift) % headings_, last << kDistanceBits);
-    const std::int64_t n = hit == kNoHit ? last : std::min(last, (hit + kHalf) >> kDistanceBits);
+    std::int64_t n = hit == kNoHit ? last : std::min(last, (hit + kHalf) >> kDistanceBits);
+    // A wall met at a grazing angle is entered cell / sin(angle) before its surface: the reading
+    // ends on the wall the ray is already in, and scores as if it hit there.
+    if (grazing_hits && hit != kNoHit && hit < r.range &&
+        runs_along_a_wall(pose.x, pose.y, (pose.k + r.shift) % headings_, hit, r.range))
+      n = std::min(last, (r.range + kHalf) >> kDistanceBits);
     sum += r.claim[std::size_t(n)];
   }
   return sum;

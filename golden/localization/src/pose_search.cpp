@@ -266,7 +266,7 @@ std::int32_t fine_score(const LocalizationMap& map, std::span<const FusedScan> s
                        : e.fine_screen[std::size_t(level - 1)];
     const FinePose then =
         s.latest ? pose : fine.fine_pose(core::compose(fine.pose_of(pose), s.to_scan));
-    const std::int32_t v = fine.score(claims, then);
+    const std::int32_t v = fine.score(claims, then, map.config().grazing_hits);
     if (v == kNotFree) {
       if (s.latest) return kNotFree;
       continue;  // a past pose off the free cells adds nothing

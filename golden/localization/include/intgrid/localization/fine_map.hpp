@@ -33,6 +33,7 @@ struct FinePose {
 struct FineClaims {
   int shift = 0;  // fine heading bins: a pose of heading k reads along (k + shift) mod headings
   std::vector<std::int32_t> claim;
+  std::int64_t range = 0;  // z in map cells, kDistanceBits fractional bits
 };
 
 class FineMap {
@@ -77,6 +78,13 @@ class FineMap {
   // passes `limit` (same unit) first. Rays skip ahead by each cell's clearance: no occupied cell
   // can lie nearer, so the answer is the cell-by-cell walk's.
   std::int64_t first_hit(std::int64_t x, std::int64_t y, int d, std::int64_t limit) const;
+  // Whether the point `distance` (map cells, kDistanceBits fractional bits) along fine direction
+  // d from (x, y) lies within one cell (Chebyshev) of an occupied cell.
+  bool near_occupied(std::int64_t x, std::int64_t y, int d, std::int64_t distance) const;
+  // Whether every point of the ray from `from` to `to` (same unit), a cell apart, is
+  // near_occupied: the ray runs along a wall, as it does when it meets one at a grazing angle.
+  bool runs_along_a_wall(std::int64_t x, std::int64_t y, int d, std::int64_t from,
+                         std::int64_t to) const;
 
   // The claims of a reading of range z (m) and bearing beta (rad) with the given sigma_eff (m):
   // the narrow ISM on the map's cells, each reading on its own S_eps scale of seps_levels steps,
@@ -84,7 +92,11 @@ class FineMap {
   FineClaims claims(double z, double bearing, double sigma_eff, int seps_levels,
                     int veto_levels) const;
   // The sum of every reading's claim at the pose; INT32_MIN when the pose's cell is not free.
-  std::int32_t score(std::span<const FineClaims> readings, const FinePose& pose) const;
+  // grazing_hits: a reading whose first hit lies before its range, while its ray runs along a
+  // wall from there to its endpoint (runs_along_a_wall), claims as if its first hit were at its
+  // range.
+  std::int32_t score(std::span<const FineClaims> readings, const FinePose& pose,
+                     bool grazing_hits) const;
 
  private:
   struct Direction {
