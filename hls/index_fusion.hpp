@@ -1,8 +1,9 @@
 // Kernel 1, index fusion (S_eps), as synthesizable C++: y = sat(a + b) per cell, saturating at
 // +-(2^(B-1) - 1), on beats of LANES cells of B-bit two's-complement indices.
 //
-// HLS rules kept here: fixed-width integers only, static sizes, constant loop bounds, no floating
-// point, no dynamic memory, no recursion, no I/O. Only standard fixed-width headers are included.
+// HLS rules kept here: fixed-width integers only (the lane sum in fixed_int.hpp's sint<B + 1>, as
+// the RTL's adder), static sizes, constant loop bounds, no floating point, no dynamic memory, no
+// recursion, no I/O. Only standard headers are included.
 //
 // A beat is packed exactly like the RTL's data bus (rtl/index_fusion.sv): lane l occupies bits
 // [l*B + B-1 : l*B] of a LANES*B-bit vector, lane 0 in the least significant bits. The vector is
@@ -10,20 +11,15 @@
 // straddle two words. Bits above LANES*B in the last word are zero in every beat produced here.
 //
 // Pragmas are the Vitis HLS ones (PIPELINE, UNROLL, ARRAY_PARTITION, INLINE, ...), written as
-// INTGRID_HLS_PRAGMA("HLS ..."); they expand to _Pragma only when the tool defines __SYNTHESIS__,
-// so a plain compiler with -Wall sees no unknown pragma. Catapult users map them to
-// hls_pipeline_init_interval 1 / hls_unroll yes.
+// INTGRID_HLS_PRAGMA("HLS ..."), defined once for every kernel in hls/hls_pragma.hpp.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 
-#ifdef __SYNTHESIS__
-#define INTGRID_HLS_PRAGMA(text) _Pragma(text)
-#else
-#define INTGRID_HLS_PRAGMA(text)
-#endif
+#include "hls/fixed_int.hpp"
+#include "hls/hls_pragma.hpp"
 
 namespace intgrid::hls {
 
@@ -86,12 +82,12 @@ constexpr std::int32_t sign_extend(std::uint32_t pattern) {
 template <int B>
 constexpr std::uint32_t saturating_add(std::uint32_t a, std::uint32_t b) {
   INTGRID_HLS_PRAGMA("HLS INLINE")
-  constexpr std::int32_t kMax = (std::int32_t{1} << (B - 1)) - 1;
-  const std::int32_t sum = sign_extend<B>(a) + sign_extend<B>(b);  // B+1 bits suffice
-  const bool overflow_pos = sum > kMax;                            // above +(2^(B-1) - 1)
+  constexpr sint<B> kMax = (std::int32_t{1} << (B - 1)) - 1;
+  const sint<B + 1> sum = sint<B>(sign_extend<B>(a)) + sint<B>(sign_extend<B>(b));
+  const bool overflow_pos = sum > kMax;   // above +(2^(B-1) - 1)
   const bool overflow_neg = sum < -kMax;  // below -(2^(B-1) - 1), -2^(B-1) included
-  const std::int32_t y = overflow_pos ? kMax : (overflow_neg ? -kMax : sum);
-  return static_cast<std::uint32_t>(y) & ((std::uint32_t{1} << B) - 1u);
+  const sint<B> y = overflow_pos ? kMax : (overflow_neg ? sint<B>(-kMax) : sint<B>(sum));
+  return static_cast<std::uint32_t>(y.value()) & ((std::uint32_t{1} << B) - 1u);
 }
 
 // One beat: LANES saturating adders side by side (the combinational data path of the RTL).

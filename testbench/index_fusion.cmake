@@ -34,9 +34,10 @@ endif()
 add_executable(index_fusion_cpp_test index_fusion_hls_test.cpp index_fusion_hls_synth.cpp
                                      index_fusion_checker_test.cpp)
 target_link_libraries(index_fusion_cpp_test PRIVATE intgrid_hls intgrid_core intgrid_kernel GTest::gtest_main)
-# index_fusion_hls_synth.cpp sees the header as an HLS tool does, pragmas expanded.
+# index_fusion_hls_synth.cpp sees the header as an HLS tool does (pragmas expanded, C++17) and
+# holds the top function.
 set_source_files_properties(index_fusion_hls_synth.cpp PROPERTIES
-  COMPILE_DEFINITIONS __SYNTHESIS__ COMPILE_OPTIONS -Wno-unknown-pragmas)
+  COMPILE_DEFINITIONS __SYNTHESIS__ COMPILE_OPTIONS "-std=c++17;-Werror;-Wno-unknown-pragmas")
 gtest_discover_tests(index_fusion_cpp_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
 
 # --- The Verilator testbench of the RTL --------------------------------------------------------

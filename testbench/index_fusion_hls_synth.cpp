@@ -1,7 +1,8 @@
 // hls/index_fusion.hpp compiled as an HLS tool sees it: __SYNTHESIS__ defined (by CMake for this
 // file only), so every INTGRID_HLS_PRAGMA expands to a real `#pragma HLS ...` (which GCC ignores;
 // the file is built with -Wno-unknown-pragmas). Shows the pragma spelling is valid C++ in every
-// place it appears.
+// place it appears, and holds the top function an HLS run synthesizes (`set_top
+// index_fusion_b8_l8`).
 #ifndef __SYNTHESIS__
 #error "index_fusion_hls_synth.cpp must be compiled with __SYNTHESIS__ defined"
 #endif
@@ -31,6 +32,18 @@ bool tile_b8_l8_self_check() {
   hls::fuse_block<8, 8, 16>(in, in, y);
   return hls::get_lane<8, 8>(out[3], 5) == 127 && hls::get_lane<8, 8>(out[2], 5) == 0 &&
          hls::get_lane<8, 8>(y[3], 0) == 127;
+}
+
+// Free running (no start/done handshake) and pipelined at II = 1: a beat of a and b enters and a
+// fused beat leaves every cycle, the AXI4-Stream handshakes playing the RTL's ready/valid.
+void index_fusion_b8_l8(const std::uint64_t a[1], const std::uint64_t b[1], std::uint64_t y[1]) {
+  INTGRID_HLS_PRAGMA("HLS INTERFACE mode=axis port=a")
+  INTGRID_HLS_PRAGMA("HLS INTERFACE mode=axis port=b")
+  INTGRID_HLS_PRAGMA("HLS INTERFACE mode=axis port=y")
+  INTGRID_HLS_PRAGMA("HLS INTERFACE mode=ap_ctrl_none port=return")
+  INTGRID_HLS_PRAGMA("HLS PIPELINE II=1")
+  static_assert(hls::IndexBeat<8, 8>::kWords == 1, "one 64-bit word a beat");
+  y[0] = hls::fuse_beat<8, 8>(hls::Beat<8, 8>{a[0]}, hls::Beat<8, 8>{b[0]})[0];
 }
 
 }  // namespace intgrid::hls_synth

@@ -200,4 +200,21 @@ TEST(IndexFusionHls, SynthesisBuildAgrees) {
   EXPECT_TRUE(intgrid::hls_synth::tile_b8_l8_self_check());
 }
 
+// The top function (compiled with __SYNTHESIS__) fuses every lane of a beat like golden.
+TEST(IndexFusionHls, TopFunctionFusesLikeGolden) {
+  std::mt19937_64 rng(intgrid::tb::test_seed("index_fusion_hls_top"));
+  for (int i = 0; i < 20000; ++i) {
+    const std::uint64_t a[1] = {rng()}, b[1] = {rng()};
+    std::uint64_t y[1] = {};
+    intgrid::hls_synth::index_fusion_b8_l8(a, b, y);
+    for (int l = 0; l < 8; ++l) {
+      const auto lane = [l](std::uint64_t w) {
+        return sign_extend(static_cast<std::uint32_t>((w >> (8 * l)) & 0xffu), 8);
+      };
+      ASSERT_EQ(lane(y[0]), intgrid::core::fuse_indices<int>(lane(a[0]), lane(b[0]), 127))
+          << "lane " << l;
+    }
+  }
+}
+
 }  // namespace

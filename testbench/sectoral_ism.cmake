@@ -5,6 +5,8 @@
 #                                 cone16, cone12, the broken variant)
 #   sectoral_ism_synth_ice40      Yosys synth_ice40 of cone16 (if yosys is found)
 #   SectoralIsmHls/*              hls/sectoral_ism.hpp against golden (every reading of the port)
+#   SectoralIsmHlsTop.*           the HLS top functions (compiled with __SYNTHESIS__) against golden
+#   HlsWidth*                     hls/ with width checking on: no value exceeds its declared width
 #   SectoralIsmRtl.*              the Verilator testbench, one Verilated model per configuration,
 #                                 and the deliberately broken variant
 #   sectoral_ism_cosim            the SystemC co-simulation (Verilated RTL beside the SystemC model)
@@ -65,14 +67,26 @@ if(INTGRID_YOSYS)
 endif()
 
 # --- Plain C++: the HLS function against golden ------------------------------------------------
-add_executable(sectoral_ism_hls_test sectoral_ism_hls_test.cpp sectoral_ism_hls_synth.cpp)
+add_executable(sectoral_ism_hls_test sectoral_ism_hls_test.cpp sectoral_ism_hls_synth.cpp
+                                     hls_headers_together.cpp)
 target_link_libraries(sectoral_ism_hls_test PRIVATE intgrid_hls intgrid_core intgrid_kernel GTest::gtest_main)
 target_include_directories(sectoral_ism_hls_test PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
 add_dependencies(sectoral_ism_hls_test sectoral_ism_tables)
-# sectoral_ism_hls_synth.cpp sees the header as an HLS tool does, pragmas expanded.
-set_source_files_properties(sectoral_ism_hls_synth.cpp PROPERTIES
-  COMPILE_DEFINITIONS __SYNTHESIS__ COMPILE_OPTIONS -Wno-unknown-pragmas)
+# sectoral_ism_hls_synth.cpp sees the header as an HLS tool does (pragmas expanded, C++17, the
+# dialect HLS front ends take) and holds the top functions; hls_headers_together.cpp includes
+# both kernels' headers so that, with -Werror, a second definition of the pragma macro fails.
+set_source_files_properties(sectoral_ism_hls_synth.cpp hls_headers_together.cpp PROPERTIES
+  COMPILE_DEFINITIONS __SYNTHESIS__ COMPILE_OPTIONS "-std=c++17;-Werror;-Wno-unknown-pragmas")
 gtest_discover_tests(sectoral_ism_hls_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
+
+# The same kernels with width checking on (INTGRID_HLS_WIDTH_CHECK changes hls/fixed_int.hpp, so
+# it is a program of its own): no value exceeds its declared width over every reading.
+add_executable(hls_width_test hls_width_test.cpp)
+target_link_libraries(hls_width_test PRIVATE intgrid_hls intgrid_core intgrid_kernel GTest::gtest_main)
+target_include_directories(hls_width_test PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
+target_compile_definitions(hls_width_test PRIVATE INTGRID_HLS_WIDTH_CHECK)
+add_dependencies(hls_width_test sectoral_ism_tables)
+gtest_discover_tests(hls_width_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
 
 # --- The Verilated models: one per configuration, and the broken variant -----------------------
 add_library(sectoral_ism_vmodels STATIC)

@@ -15,6 +15,7 @@
 #include "intgrid/kernel/ism_kernel.hpp"
 #include "sectoral_ism_cone12_config.hpp"
 #include "sectoral_ism_cone16_config.hpp"
+#include "testbench/sectoral_ism_hls_synth.hpp"
 
 using namespace intgrid::core;
 using namespace intgrid::kernel;
@@ -59,6 +60,14 @@ TYPED_TEST(SectoralIsmHls, GeneratedTablesAreGoldens) {
   EXPECT_EQ(C::log_bits, d.log_bits);
   EXPECT_EQ(C::mul_digits, d.mul_digits);
   EXPECT_TRUE(same(C::threshold_bucket, threshold_buckets(k, d)));
+  // The table widths hls/ derives itself are golden's.
+  using W = hls::IsmWidths<C>;
+  EXPECT_EQ(W::norm_bits, d.norm_bits);
+  EXPECT_EQ(W::weight_bits, d.weight_bits);
+  EXPECT_EQ(W::phi_bits, d.phi_bits);
+  EXPECT_EQ(W::phi_count, static_cast<int>(k.log_add.size()));
+  EXPECT_EQ(W::thr_bits, d.thr_bits);
+  EXPECT_EQ(W::bucket_bits, d.bucket_bits);
 }
 
 TYPED_TEST(SectoralIsmHls, EveryReadingOfThePortIsGoldens) {
@@ -77,17 +86,52 @@ TYPED_TEST(SectoralIsmHls, EveryReadingOfThePortIsGoldens) {
   EXPECT_EQ(bad, 0u);
 }
 
+// The top functions (compiled with __SYNTHESIS__, 8-bit cells at the port) against golden for
+// every reading in the sensor's reach and a stretch beyond it.
+template <class C, class Top>
+void check_top(const IsmKernelTables& k, Top top) {
+  static std::int8_t cells[C::rings * C::bins];
+  std::vector<std::int16_t> want(k.grid.cells());
+  std::size_t bad = 0;
+  for (std::uint32_t z = 0; z <= k.reach + 512; ++z) {
+    const std::uint16_t reading[1] = {static_cast<std::uint16_t>(z)};
+    top(reading, cells);
+    ism_kernel_indices(k, z, want);
+    if (!std::equal(want.begin(), want.end(), cells)) {
+      if (++bad <= 3) ADD_FAILURE() << C::name << ": top function, reading " << z;
+    }
+  }
+  EXPECT_EQ(bad, 0u);
+}
+
+TEST(SectoralIsmHlsTop, Cone16IsGoldens) {
+  check_top<SectoralIsmCone16>(make_ism_hw_kernel(ism_hw_config("cone16")),
+                               hls_synth::sectoral_ism_cone16);
+}
+TEST(SectoralIsmHlsTop, Cone12IsGoldens) {
+  check_top<SectoralIsmCone12>(make_ism_hw_kernel(ism_hw_config("cone12")),
+                               hls_synth::sectoral_ism_cone12);
+}
+
+// On the kernel's domain: finite log values within +-log_bound (RtlWordWidthsHoldEveryValue
+// shows every value of the recursion lies there), products whose sum does too.
 TYPED_TEST(SectoralIsmHls, LogAdditionAndProductAreGoldens) {
   using C = TypeParam;
   const IsmKernelTables& k = this->kernel();
+  constexpr std::int32_t bound = C::log_bound;
   std::mt19937_64 rng(11);
-  std::uniform_int_distribution<std::int32_t> any(-(1 << 22), 1 << 16);
+  std::uniform_int_distribution<std::int32_t> any(-bound, bound);
   std::uniform_int_distribution<std::int32_t> near(-3000, 3000);
   for (int i = 0; i < 200000; ++i) {
-    std::int32_t a = any(rng), b = (i % 2) ? a + near(rng) : any(rng);
+    std::int32_t a = any(rng);
+    std::int32_t b = (i % 2) ? std::clamp(a + near(rng), -bound, bound) : any(rng);
     if (i % 97 == 0) a = C::log_zero;
     if (i % 89 == 0) b = C::log_zero;
     ASSERT_EQ((hls::ism_log_add<C>(a, b)), kernel_log_add(k, a, b)) << a << " " << b;
+    // A product's factors: b drawn so that a + b stays within the bound.
+    if (a != C::log_zero && b != C::log_zero)
+      b = std::uniform_int_distribution<std::int32_t>(std::max(-bound, -bound - a),
+                                                      std::min(bound, bound - a))(rng);
     ASSERT_EQ((hls::ism_log_mul<C>(a, b)), kernel_log_mul(a, b)) << a << " " << b;
   }
 }
