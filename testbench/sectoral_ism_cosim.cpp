@@ -9,6 +9,7 @@
 //     data (the RTL's signals are public through testbench/sectoral_ism_cosim.vlt);
 //   - the RTL's index writes against golden: each written index equals golden's index of that
 //     (ring, sector) for the reading in set-up.
+// In reset the model's z_ready must be low (the RTL's is compared only out of reset).
 // The first differing cycle and signal are reported. Each model's output stream is also
 // checked against golden's ism_kernel_indices by its own scoreboard (order, last flags, no
 // drop or duplicate, outputs stable while valid && !ready).
@@ -214,7 +215,10 @@ struct CosimPair : sc_core::sc_module, Cosim {
   void compare() {
     while (true) {
       wait();
-      if (!rst_n.read()) continue;
+      if (!rst_n.read()) {  // the model takes no reading in reset
+        if (sc_z_ready.read()) model_board.fail("z_ready high in reset", cycle);
+        continue;
+      }
       const Write rw = rtl_write(), mw = model.index_ram_write();
       if (rtl_z_ready.read() != sc_z_ready.read())
         mismatch("z_ready", rtl_z_ready.read(), sc_z_ready.read());
