@@ -18,6 +18,7 @@
 // that set-up lengths show at the ports.
 //
 //   sectoral_ism_cosim <cone16|cone12|cone16_bug_phi> [seed] [--fault rtl_phi|sc_schedule]
+// (without a seed: INTGRID_ISM_SEED, else 42).
 // cone16_bug_phi is the RTL built with SECTORAL_ISM_BUG_PHI. With --fault, the run must fail,
 // and at the right cycle: rtl_phi, on the index RAM write data at the RTL's first index write
 // that differs from golden; sc_schedule (a build of this file with SECTORAL_ISM_SC_BUG_SCHEDULE:
@@ -380,7 +381,7 @@ int usage() {
 int sc_main(int argc, char* argv[]) {
   if (argc < 2) return usage();
   const std::string config = argv[1];
-  std::uint64_t seed = ism_bench_seed(42, "sectoral_ism_cosim");
+  const char* seed_arg = nullptr;
   Fault fault = Fault::None;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -393,10 +394,16 @@ int sc_main(int argc, char* argv[]) {
       else
         return usage();
     } else {
-      seed = std::strtoull(arg.c_str(), nullptr, 0);
-      std::printf("[sectoral_ism_cosim] seed %llu (command line)\n",
-                  static_cast<unsigned long long>(seed));
+      seed_arg = argv[i];
     }
+  }
+  std::uint64_t seed = 0;
+  if (seed_arg) {
+    seed = std::strtoull(seed_arg, nullptr, 0);
+    std::printf("[sectoral_ism_cosim] seed %llu (command line)\n",
+                static_cast<unsigned long long>(seed));
+  } else {
+    seed = ism_bench_seed(42, "sectoral_ism_cosim");
   }
   sc_core::sc_clock clk("clk", 10, sc_core::SC_NS);
   std::unique_ptr<Cosim> run;
