@@ -1,12 +1,15 @@
 // Cycle-accurate SystemC model of the sectoral ISM kernel (rtl/sectoral_ism.sv): the same
-// ports, the same ready/valid behaviour and the same cycle of every handshake as the RTL.
-// The indices come from the synthesizable function hls::sectoral_ism_kernel; the timing
-// from the RTL's schedule (systemc/sectoral_ism_timing.hpp) and a register-level copy of
-// its bank flags, stream stage and spill register.
-//
-// One SC_CTHREAD on clk.pos(), reset while rst_n is low (synchronous, like the RTL). Every
-// output is a register or a function of registers only, written after each edge, so a beat
-// moves in the cycle where both sides' values are high at the next edge.
+// ports, the same micro-architecture and the same cycle of every handshake and every index RAM
+// write as the RTL. Three processes, as the RTL's blocks:
+//   setup    SectoralIsmSetup (systemc/sectoral_ism_setup.hpp): the set-up engine, which
+//            writes the (ring, sector) indices of a reading's window into bank wb
+//   banks    one SC_CTHREAD: the two-bank index RAM, its full flags and window registers,
+//            and the streamer (rtl/sectoral_ism_stream.sv: ring-major read, stage 1 with the
+//            constants of the rings outside the window, spill register)
+//   accept   one SC_METHOD: z_ready = the engine is idle and its next bank is free (low in
+//            reset), and the engine's start, as the RTL's assigns
+// The threads reset while rst_n is low (synchronous, like the RTL); every output is a
+// register or a function of registers (z_ready also of rst_n).
 //
 //   z_valid/z_ready/z_data/z_last  one reading per beat (z_data: reading_bits wide; z_last
 //                                  ignored)
@@ -19,14 +22,15 @@
 
 #include <systemc>
 
-#include "hls/sectoral_ism.hpp"
-#include "systemc/sectoral_ism_timing.hpp"
+#include "systemc/sectoral_ism_setup.hpp"
 
 namespace intgrid::sc {
 
 template <class Config>
 struct SectoralIsmModule : sc_core::sc_module {
   static constexpr int kCells = Config::rings * Config::bins;
+  static constexpr int kRingBits = Config::rings > 1 ? sectoral_ism_clog2(Config::rings) : 1;
+  static constexpr int kBankBits = kRingBits + SectoralIsmSetup<Config>::kSectorBits;  // IDX_AW
 
   sc_core::sc_in<bool> clk{"clk"};
   sc_core::sc_in<bool> rst_n{"rst_n"};
@@ -39,79 +43,126 @@ struct SectoralIsmModule : sc_core::sc_module {
   sc_core::sc_out<std::uint32_t> y_data{"y_data"};
   sc_core::sc_out<bool> y_last{"y_last"};
 
+  // The index RAM's write port in this cycle: the address is {bank, ring index, sector}.
+  struct IndexRamWrite {
+    bool we = false;
+    std::uint32_t addr = 0, data = 0;
+  };
+  IndexRamWrite index_ram_write() const {
+    return {idx_we_.read(), (std::uint32_t(wb_.read()) << kBankBits) | idx_waddr_.read(),
+            idx_wdata_.read()};
+  }
+
   SC_HAS_PROCESS(SectoralIsmModule);
   explicit SectoralIsmModule(const sc_core::sc_module_name& name) : sc_core::sc_module(name) {
-    SC_CTHREAD(run, clk.pos());
+    setup_.clk(clk);
+    setup_.rst_n(rst_n);
+    setup_.start(start_);
+    setup_.z(z_data);
+    setup_.idle(idle_);
+    setup_.done(done_);
+    setup_.r_lo(r_lo_);
+    setup_.r_hi(r_hi_);
+    setup_.below(below_);
+    setup_.idx_we(idx_we_);
+    setup_.idx_waddr(idx_waddr_);
+    setup_.idx_wdata(idx_wdata_);
+    SC_CTHREAD(banks, clk.pos());
     reset_signal_is(rst_n, false);
+    SC_METHOD(accept);
+    sensitive << rst_n << z_valid << idle_ << bank_free_;
   }
 
  private:
-  // The RTL's registers (sectoral_ism.sv, sectoral_ism_stream.sv, spill_register.sv).
+  SectoralIsmSetup<Config> setup_{"setup"};
+  sc_core::sc_signal<bool> start_{"start"}, idle_{"idle"}, done_{"done"};
+  sc_core::sc_signal<int> r_lo_{"r_lo"}, r_hi_{"r_hi"}, below_{"below"};
+  sc_core::sc_signal<bool> idx_we_{"idx_we"};
+  sc_core::sc_signal<std::uint32_t> idx_waddr_{"idx_waddr"}, idx_wdata_{"idx_wdata"};
+  sc_core::sc_signal<bool> bank_free_{"bank_free"};  // !full[wb]
+  sc_core::sc_signal<bool> wb_{"wb"};
+
+  void accept() {
+    const bool ready = rst_n.read() && idle_.read() && bank_free_.read();
+    z_ready.write(ready);
+    start_.write(z_valid.read() && ready);
+  }
+
+  // The RTL's registers of sectoral_ism.sv, sectoral_ism_stream.sv and spill_register.sv.
+  static constexpr int kBps = Config::bins_per_sector;
   struct State {
-    bool engine_idle = true;
-    std::uint64_t engine_left = 0;  // set-up cycles still to run, the current one included
-    std::array<bool, 2> full{};     // index banks
-    int wb = 0, rb = 0;             // bank being written / read
-    int cell = 0;                   // next cell of bank rb to read
-    bool s1_valid = false, s1_last = false;
-    std::int16_t s1_index = 0;
+    std::array<bool, 2> full{};  // index banks
+    int wb = 0, rb = 0;          // bank being written / read
+    std::array<int, 2> lo{}, hi{}, below{};
+    int ring = 0, sec = 0, bin = 0;  // the next cell to read
+    std::uint32_t rdata = 0;         // the RAM's registered read
+    bool s1_valid = false, s1_last = false, s1_const = false;
+    std::uint32_t s1_const_idx = 0;
     bool a_full = false, b_full = false;   // spill register
     std::uint32_t a_data = 0, b_data = 0;  // {last, index}
   };
   State s_;
-  std::int16_t bank_[2][kCells] = {};
+  std::array<std::uint32_t, std::size_t{2} << kBankBits> ram_{};
 
   static constexpr std::uint32_t kIndexMask = (1u << Config::index_bits) - 1;
 
   void write_outputs() {
-    z_ready.write(s_.engine_idle && !s_.full[s_.wb]);
+    bank_free_.write(!s_.full[static_cast<std::size_t>(s_.wb)]);
+    wb_.write(s_.wb != 0);
     y_valid.write(s_.a_full);
     y_data.write(s_.a_data & kIndexMask);
     y_last.write(((s_.a_data >> Config::index_bits) & 1u) != 0);
   }
 
   // One clock edge: the next state from the current state and this cycle's inputs.
-  void step(bool zv, std::uint32_t zd, bool yr) {
+  void step(bool yr) {
     const State o = s_;
     State n = o;
-    const bool z_fire = zv && o.engine_idle && !o.full[o.wb];
-    // Set-up engine.
-    if (o.engine_idle) {
-      if (z_fire) {
-        const std::uint32_t reading = zd & ((1u << Config::reading_bits) - 1);
-        hls::sectoral_ism_kernel<Config>(reading, bank_[o.wb]);
-        n.engine_idle = false;
-        n.engine_left = sectoral_ism_setup_cycles<Config>(reading);
-      }
-    } else if (o.engine_left == 1) {  // the set-up's last cycle: the bank is written
-      n.full[o.wb] = true;
+    // Banks: the engine's last set-up cycle.
+    if (done_.read()) {
+      const auto w = static_cast<std::size_t>(o.wb);
+      n.full[w] = true;
       n.wb = 1 - o.wb;
-      n.engine_idle = true;
-    } else {
-      --n.engine_left;
+      n.lo[w] = r_lo_.read();
+      n.hi[w] = r_hi_.read();
+      n.below[w] = below_.read();
     }
-    // Streamer: stage 1 and the spill register.
+    // Streamer: stage 1 reads the next cell (or takes a constant) while it can advance.
+    const auto r = static_cast<std::size_t>(o.rb);
     const bool sp_ready = !o.b_full;
     const bool s1_advance = !o.s1_valid || sp_ready;
-    const bool issue = o.full[o.rb] && s1_advance;
+    const bool issue = o.full[r] && s1_advance;
+    const bool last_cell =
+        o.ring == Config::rings - 1 && o.sec == Config::sectors - 1 && o.bin == kBps - 1;
     if (issue) {
-      const bool last = o.cell == kCells - 1;
+      const bool below = o.ring + 1 < o.lo[r];
+      const bool above = o.ring + 1 > o.hi[r];
+      n.rdata =
+          ram_[(r << kBankBits) | (std::size_t(o.ring) << SectoralIsmSetup<Config>::kSectorBits) |
+               std::size_t(o.sec)];
       n.s1_valid = true;
-      n.s1_last = last;
-      n.s1_index = bank_[o.rb][o.cell];
-      if (last) {
-        n.cell = 0;
-        n.full[o.rb] = false;
+      n.s1_last = last_cell;
+      n.s1_const = below || above;
+      n.s1_const_idx = below ? static_cast<std::uint32_t>(o.below[r]) & kIndexMask : 0;
+      n.bin = o.bin + 1;
+      if (o.bin == kBps - 1) {
+        n.bin = 0;
+        n.sec = o.sec + 1;
+        if (o.sec == Config::sectors - 1) {
+          n.sec = 0;
+          n.ring = last_cell ? 0 : o.ring + 1;
+        }
+      }
+      if (last_cell) {  // the bank is read: free it
+        n.full[r] = false;
         n.rb = 1 - o.rb;
-      } else {
-        n.cell = o.cell + 1;
       }
     } else if (s1_advance) {
       n.s1_valid = false;
     }
+    // Spill register.
     const std::uint32_t sp_in =
-        (std::uint32_t(o.s1_last) << Config::index_bits) |
-        (static_cast<std::uint32_t>(static_cast<std::int32_t>(o.s1_index)) & kIndexMask);
+        (std::uint32_t(o.s1_last) << Config::index_bits) | (o.s1_const ? o.s1_const_idx : o.rdata);
     const bool a_drain = o.a_full && yr;
     const bool a_fill = o.s1_valid && sp_ready && (!o.a_full || a_drain) && !o.b_full;
     const bool b_fill = o.s1_valid && sp_ready && o.a_full && !a_drain;
@@ -123,15 +174,18 @@ struct SectoralIsmModule : sc_core::sc_module {
     n.a_full = b_drain || a_fill || (o.a_full && !a_drain);
     if (b_fill) n.b_data = sp_in;
     n.b_full = b_fill || (o.b_full && !b_drain);
+    // The engine's write, after the read (a read of the address written returns old data).
+    if (idx_we_.read())
+      ram_[(std::size_t(o.wb) << kBankBits) | idx_waddr_.read()] = idx_wdata_.read();
     s_ = n;
   }
 
-  void run() {
+  void banks() {
     s_ = State{};
     write_outputs();
     wait();
     while (true) {
-      step(z_valid.read(), z_data.read(), y_ready.read());
+      step(y_ready.read());
       write_outputs();
       wait();
     }

@@ -1,5 +1,7 @@
-// The cycle schedule of the sectoral ISM micro-architecture (rtl/sectoral_ism_setup.sv),
-// for the SystemC model and the testbenches. Pure C++: no SystemC.
+// The cycle schedule of the sectoral ISM micro-architecture (rtl/sectoral_ism_setup.sv) as a
+// closed formula: the testbenches' independent oracle of the set-up length and latency
+// (SectoralIsmRtl.*SetupCyclesFollowTheSchedule, *FullThroughput). The SystemC model does not
+// use it: it runs the schedule phase by phase (systemc/sectoral_ism_setup.hpp). Pure C++.
 #pragma once
 
 #include <cstdint>

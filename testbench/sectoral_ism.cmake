@@ -9,7 +9,8 @@
 #   HlsWidth*                     hls/ with width checking on: no value exceeds its declared width
 #   SectoralIsmRtl.*              the Verilator testbench, one Verilated model per configuration,
 #                                 and the deliberately broken variant
-#   sectoral_ism_cosim            the SystemC co-simulation (Verilated RTL beside the SystemC model)
+#   sectoral_ism_cosim_*          the SystemC co-simulation (Verilated RTL beside the SystemC model),
+#                                 3 seeds per configuration, and its two fault variants
 #   sectoral_ism_report           measured cycles, latency and simulation speed, one JSON line each
 find_package(GTest REQUIRED)
 include(GoogleTest)
@@ -125,16 +126,47 @@ add_test(NAME sectoral_ism_report COMMAND sectoral_ism_report 300)
 set_tests_properties(sectoral_ism_report PROPERTIES LABELS hw)
 
 # --- The SystemC co-simulation ------------------------------------------------------------------
-add_executable(sectoral_ism_cosim sectoral_ism_cosim.cpp)
-add_dependencies(sectoral_ism_cosim sectoral_ism_tables)
-target_link_libraries(sectoral_ism_cosim PRIVATE intgrid_systemc intgrid_core intgrid_kernel)
-target_include_directories(sectoral_ism_cosim PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
-target_include_directories(sectoral_ism_cosim SYSTEM PRIVATE ${VERILATOR_ROOT}/include
-                                                             ${VERILATOR_ROOT}/include/vltstd)
-foreach(_cfg ${_ism_configs})
-  verilate(sectoral_ism_cosim SYSTEMC SOURCES ${_ism_rtl} TOP_MODULE sectoral_ism
-           PREFIX Vsectoral_ism_sc_${_cfg} DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/sc_${_cfg}
-           VERILATOR_ARGS -f ${_ism_gen}/sectoral_ism_${_cfg}.vc ${_ism_quiet})
+# Verilated SystemC models of both configurations and of the broken variant, with the index RAM
+# write port public (sectoral_ism_cosim.vlt) so that the co-simulation compares it every cycle.
+add_library(sectoral_ism_sc_vmodels STATIC)
+add_dependencies(sectoral_ism_sc_vmodels sectoral_ism_tables)
+target_link_libraries(sectoral_ism_sc_vmodels PUBLIC intgrid_systemc_lib)
+set(_ism_sc_vdirs "")
+foreach(_variant cone16 cone12 cone16_bug)
+  string(REPLACE "_bug" "" _cfg ${_variant})
+  set(_args -f ${_ism_gen}/sectoral_ism_${_cfg}.vc)
+  if(_variant MATCHES "_bug$")
+    list(APPEND _args -DSECTORAL_ISM_BUG_PHI)
+  endif()
+  set(_vdir ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/sc_${_variant})
+  verilate(sectoral_ism_sc_vmodels SYSTEMC
+           SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/sectoral_ism_cosim.vlt ${_ism_rtl}
+           TOP_MODULE sectoral_ism PREFIX Vsectoral_ism_sc_${_variant} DIRECTORY ${_vdir}
+           VERILATOR_ARGS ${_args} ${_ism_quiet})
+  list(APPEND _ism_sc_vdirs ${_vdir})
 endforeach()
-add_test(NAME sectoral_ism_cosim COMMAND sectoral_ism_cosim)
-set_tests_properties(sectoral_ism_cosim PROPERTIES LABELS hw)
+# The co-simulation, and a build of it whose SystemC model has a one-cycle schedule fault.
+function(_ism_cosim target)
+  add_executable(${target} sectoral_ism_cosim.cpp)
+  target_link_libraries(${target} PRIVATE sectoral_ism_sc_vmodels intgrid_systemc intgrid_core
+                                          intgrid_kernel)
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
+  target_include_directories(${target} SYSTEM PRIVATE ${VERILATOR_ROOT}/include
+                                                      ${VERILATOR_ROOT}/include/vltstd ${_ism_sc_vdirs})
+endfunction()
+_ism_cosim(sectoral_ism_cosim)
+_ism_cosim(sectoral_ism_cosim_sc_bug)
+target_compile_definitions(sectoral_ism_cosim_sc_bug PRIVATE SECTORAL_ISM_SC_BUG_SCHEDULE)
+# Three seeds per configuration; each fault must be caught at the cycle where it first shows.
+foreach(_cfg ${_ism_configs})
+  foreach(_seed 1 2 3)
+    add_test(NAME sectoral_ism_cosim_${_cfg}_seed${_seed} COMMAND sectoral_ism_cosim ${_cfg} ${_seed})
+    set_tests_properties(sectoral_ism_cosim_${_cfg}_seed${_seed} PROPERTIES LABELS hw)
+  endforeach()
+endforeach()
+add_test(NAME sectoral_ism_cosim_fault_rtl_phi
+         COMMAND sectoral_ism_cosim cone16_bug_phi 1 --fault rtl_phi)
+add_test(NAME sectoral_ism_cosim_fault_sc_schedule
+         COMMAND sectoral_ism_cosim_sc_bug cone16 1 --fault sc_schedule)
+set_tests_properties(sectoral_ism_cosim_fault_rtl_phi sectoral_ism_cosim_fault_sc_schedule
+                     PROPERTIES LABELS hw)

@@ -1,19 +1,35 @@
 // SystemC co-simulation of kernel 2, the sectoral ISM: the Verilated RTL (verilator --sc) and
-// the SystemC model (systemc/sectoral_ism_module.hpp, which runs hls::sectoral_ism_kernel)
+// the SystemC model (systemc/sectoral_ism_module.hpp, the micro-architecture cycle by cycle)
 // side by side on one clock and one stimulus (the same input signals, the same random gaps,
-// the same random back-pressure). On every cycle both must show the same z_ready, y_valid,
-// and, while valid, the same y_data and y_last; each is also checked against golden's
-// ism_kernel_indices by its own scoreboard (order, last flags, no drop or duplicate, outputs
-// stable while valid && !ready).
+// the same random back-pressure, one reset in mid-stream at a random cycle).
 //
-// Both configurations run at once, each a pair of models with its own stimulus: the edge
-// readings and 150 random ones, every 4th offered only to an idle kernel so that set-up
-// lengths show at the ports. Prints one JSON line per configuration; exit status 0 when
-// everything agrees, 1 otherwise. INTGRID_ISM_SEED reproduces a run.
+// Checked in the middle of every cycle out of reset (both models settled):
+//   - every port: z_ready and y_valid, and while valid y_data and y_last;
+//   - the index RAM write port: we, and while we the address {bank, ring, sector} and the
+//     data (the RTL's signals are public through testbench/sectoral_ism_cosim.vlt);
+//   - the RTL's index writes against golden: each written index equals golden's index of that
+//     (ring, sector) for the reading in set-up.
+// In reset the model's z_ready must be low (the RTL's is compared only out of reset).
+// The first differing cycle and signal are reported. Each model's output stream is also
+// checked against golden's ism_kernel_indices by its own scoreboard (order, last flags, no
+// drop or duplicate, outputs stable while valid && !ready).
+//
+// Stimulus: the edge readings and 150 random ones, every 4th offered only to an idle kernel so
+// that set-up lengths show at the ports.
+//
+//   sectoral_ism_cosim <cone16|cone12|cone16_bug_phi> [seed] [--fault rtl_phi|sc_schedule]
+// (without a seed: INTGRID_ISM_SEED, else 42).
+// cone16_bug_phi is the RTL built with SECTORAL_ISM_BUG_PHI. With --fault, the run must fail,
+// and at the right cycle: rtl_phi, on the index RAM write data at the RTL's first index write
+// that differs from golden; sc_schedule (a build of this file with SECTORAL_ISM_SC_BUG_SCHEDULE:
+// one suffix cycle more in the model), on the write enable at the RTL's first index write.
+// Prints one JSON line; exit status 0 when the run is as expected, 1 otherwise.
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -21,7 +37,11 @@
 #include <systemc>
 
 #include "Vsectoral_ism_sc_cone12.h"
+#include "Vsectoral_ism_sc_cone12___024root.h"
 #include "Vsectoral_ism_sc_cone16.h"
+#include "Vsectoral_ism_sc_cone16___024root.h"
+#include "Vsectoral_ism_sc_cone16_bug.h"
+#include "Vsectoral_ism_sc_cone16_bug___024root.h"
 #include "intgrid/kernel/hardware_configs.hpp"
 #include "intgrid/kernel/ism_kernel.hpp"
 #include "sectoral_ism_cone12_config.hpp"
@@ -48,13 +68,20 @@ struct Scoreboard {
   const IsmKernelTables* k = nullptr;
   int index_bits = 0;
   std::deque<std::vector<std::int16_t>> expected;
-  std::size_t cell = 0, readings = 0, cells = 0, errors = 0;
+  std::size_t cell = 0, readings = 0, lost = 0, cells = 0, errors = 0;
   bool stalled = false;
   Outputs previous;
   std::string first_error;
 
   void fail(const std::string& what, std::uint64_t cycle) {
     if (errors++ == 0) first_error = "cycle " + std::to_string(cycle) + ": " + what;
+  }
+  // A reset: the readings accepted and not sent are lost.
+  void reset() {
+    lost += expected.size();
+    expected.clear();
+    cell = 0;
+    stalled = false;
   }
   // One cycle: the outputs, whether the reading offered was taken, and y_ready.
   void cycle(const Outputs& o, bool z_fire, std::uint32_t reading, bool y_ready,
@@ -85,8 +112,21 @@ struct Scoreboard {
   }
 };
 
+enum class Fault { None, RtlPhi, ScSchedule };
+
+struct Cosim {
+  virtual ~Cosim() = default;
+  virtual bool done() const = 0;
+  virtual bool ok() const = 0;
+  virtual void print(double seconds) const = 0;
+};
+
 template <class VModel, class Config>
-struct CosimPair : sc_core::sc_module {
+struct CosimPair : sc_core::sc_module, Cosim {
+  using Write = typename sc::SectoralIsmModule<Config>::IndexRamWrite;
+  static constexpr int kSectorBits = sc::SectoralIsmSetup<Config>::kSectorBits;
+  static constexpr int kBankBits = sc::SectoralIsmModule<Config>::kBankBits;
+
   sc_core::sc_in<bool> clk{"clk"};
   sc_signal<bool> rst_n{"rst_n"}, z_valid{"z_valid"}, z_last{"z_last"}, y_ready{"y_ready"};
   sc_signal<std::uint32_t> z_data{"z_data"};
@@ -98,17 +138,28 @@ struct CosimPair : sc_core::sc_module {
   VModel rtl{"rtl"};
   sc::SectoralIsmModule<Config> model{"model"};
 
+  const char* name_;
+  Fault fault_;
   IsmKernelTables kernel;
   std::vector<std::uint32_t> readings;
   std::mt19937_64 rng;
   Scoreboard rtl_board, model_board;
-  std::uint64_t cycles = 0, cycle_mismatches = 0;
-  std::string first_mismatch;
-  bool done = false;
+  std::uint64_t cycle = 0;  // cycles out of reset, counted in the middle of each cycle
+  std::uint64_t cycle_mismatches = 0, first_mismatch_cycle = 0;
+  std::string first_mismatch, first_mismatch_signal;
+  // The reading the engine sets up (the last one accepted) and golden's indices of it.
+  std::vector<std::int16_t> in_setup;
+  std::uint64_t rtl_writes = 0, rtl_write_errors = 0, first_rtl_write = 0,
+                first_rtl_write_error = 0;
+  std::string first_write_error;
+  bool resets_done = false, finished = false;
 
   SC_HAS_PROCESS(CosimPair);
-  CosimPair(const sc_core::sc_module_name& name, std::uint64_t seed)
+  CosimPair(const sc_core::sc_module_name& name, const char* config_name, std::uint64_t seed,
+            Fault fault)
       : sc_core::sc_module(name),
+        name_(config_name),
+        fault_(fault),
         kernel(make_ism_hw_kernel(ism_hw_config(Config::name))),
         rng(seed) {
     readings = ism_edge_readings(kernel, kIsmReadingBits);
@@ -139,6 +190,78 @@ struct CosimPair : sc_core::sc_module {
     model.y_data(sc_y_data);
     model.y_last(sc_y_last);
     SC_CTHREAD(drive, clk.pos());
+    SC_CTHREAD(compare, clk.neg());
+  }
+
+  bool done() const override { return finished; }
+
+  // The RTL's index RAM write port: {wb_q, idx_waddr} as i_index_ram sees it.
+  Write rtl_write() {
+    const auto* r = rtl.rootp;
+    return {r->sectoral_ism__DOT__idx_we != 0,
+            (std::uint32_t(r->sectoral_ism__DOT__wb_q) << kBankBits) |
+                std::uint32_t(r->sectoral_ism__DOT__idx_waddr),
+            std::uint32_t(r->sectoral_ism__DOT__idx_wdata)};
+  }
+
+  void mismatch(const char* signal, std::uint32_t rtl_value, std::uint32_t model_value) {
+    if (cycle_mismatches++ != 0) return;
+    first_mismatch_cycle = cycle;
+    first_mismatch_signal = signal;
+    first_mismatch = "cycle " + std::to_string(cycle) + ": " + signal + " rtl " +
+                     std::to_string(rtl_value) + ", model " + std::to_string(model_value);
+  }
+
+  // In the middle of each cycle: every port and the index RAM write port of both models.
+  void compare() {
+    while (true) {
+      wait();
+      if (!rst_n.read()) {  // the model takes no reading in reset
+        if (sc_z_ready.read()) model_board.fail("z_ready high in reset", cycle);
+        continue;
+      }
+      const Write rw = rtl_write(), mw = model.index_ram_write();
+      if (rtl_z_ready.read() != sc_z_ready.read())
+        mismatch("z_ready", rtl_z_ready.read(), sc_z_ready.read());
+      else if (rtl_y_valid.read() != sc_y_valid.read())
+        mismatch("y_valid", rtl_y_valid.read(), sc_y_valid.read());
+      else if (rtl_y_valid.read() && rtl_y_data.read() != sc_y_data.read())
+        mismatch("y_data", rtl_y_data.read(), sc_y_data.read());
+      else if (rtl_y_valid.read() && rtl_y_last.read() != sc_y_last.read())
+        mismatch("y_last", rtl_y_last.read(), sc_y_last.read());
+      else if (rw.we != mw.we)
+        mismatch("index_ram_we", rw.we, mw.we);
+      else if (rw.we && rw.addr != mw.addr)
+        mismatch("index_ram_waddr", rw.addr, mw.addr);
+      else if (rw.we && rw.data != mw.data)
+        mismatch("index_ram_wdata", rw.data, mw.data);
+      if (rw.we) check_rtl_write(rw);
+      ++cycle;
+    }
+  }
+
+  // An RTL index write against golden's index of its (ring, sector).
+  void check_rtl_write(const Write& w) {
+    if (rtl_writes++ == 0) first_rtl_write = cycle;
+    if (in_setup.empty()) {  // a write before any reading
+      if (rtl_write_errors++ == 0) {
+        first_rtl_write_error = cycle;
+        first_write_error = "cycle " + std::to_string(cycle) + ": a write with no reading";
+      }
+      return;
+    }
+    const std::uint32_t ring = (w.addr & ((1u << kBankBits) - 1)) >> kSectorBits;
+    const std::uint32_t sector = w.addr & ((1u << kSectorBits) - 1);
+    const std::size_t cell = ring * Config::bins + sector * Config::bins_per_sector;
+    const std::uint32_t want =
+        static_cast<std::uint32_t>(in_setup.at(cell)) & ((1u << Config::index_bits) - 1);
+    if (w.data == want) return;
+    if (rtl_write_errors++ == 0) {
+      first_rtl_write_error = cycle;
+      first_write_error = "cycle " + std::to_string(cycle) + ": ring index " +
+                          std::to_string(ring) + " sector " + std::to_string(sector) + ": " +
+                          std::to_string(w.data) + ", golden " + std::to_string(want);
+    }
   }
 
   static Outputs sample(const sc_signal<bool>& zr, const sc_signal<bool>& yv,
@@ -146,48 +269,51 @@ struct CosimPair : sc_core::sc_module {
     return Outputs{zr.read(), yv.read(), yl.read(), yd.read()};
   }
 
-  // At each rising edge: the outputs of the cycle that ends, checked; the next cycle's inputs.
-  void drive() {
-    std::bernoulli_distribution gap(0.3), ready(0.6);
+  void hold_reset(int cycles) {
     rst_n.write(false);
     z_valid.write(false);
     y_ready.write(false);
-    for (int i = 0; i < 4; ++i) wait();
+    for (int i = 0; i < cycles; ++i) wait();
     rst_n.write(true);
     wait();  // the first cycle out of reset
+  }
+
+  // At each rising edge: the outputs of the cycle that ends, scored; the next cycle's inputs.
+  void drive() {
+    std::bernoulli_distribution gap(0.3), ready(0.6);
+    hold_reset(4);
     std::size_t next = 0;
     bool offering = false, ready_now = false;
     std::uint64_t quiet = 0;
+    // One reset in mid-stream, at a random cycle after half the readings are offered.
+    std::uint64_t reset_countdown = std::uniform_int_distribution<std::uint64_t>(0, 3000)(rng);
     while (true) {
       wait();
+      const std::uint64_t now = cycle - 1;  // the cycle that just ended
       const Outputs r = sample(rtl_z_ready, rtl_y_valid, rtl_y_data, rtl_y_last);
       const Outputs m = sample(sc_z_ready, sc_y_valid, sc_y_data, sc_y_last);
-      if (r.z_ready != m.z_ready || r.y_valid != m.y_valid ||
-          (r.y_valid && (r.y_data != m.y_data || r.y_last != m.y_last))) {
-        if (cycle_mismatches++ == 0)
-          first_mismatch = "cycle " + std::to_string(cycles) + ": rtl z_ready " +
-                           std::to_string(r.z_ready) + " y_valid " + std::to_string(r.y_valid) +
-                           " y_data " + std::to_string(r.y_data) + ", model z_ready " +
-                           std::to_string(m.z_ready) + " y_valid " + std::to_string(m.y_valid) +
-                           " y_data " + std::to_string(m.y_data);
-      }
       const std::uint32_t offered = offering ? readings[next] : 0;
-      rtl_board.cycle(r, offering && r.z_ready, offered, ready_now, cycles);
-      model_board.cycle(m, offering && m.z_ready, offered, ready_now, cycles);
+      rtl_board.cycle(r, offering && r.z_ready, offered, ready_now, now);
+      model_board.cycle(m, offering && m.z_ready, offered, ready_now, now);
       const bool moved = (offering && r.z_ready) || (r.y_valid && ready_now);
       if (offering && r.z_ready) {
+        in_setup = ism_kernel_indices(kernel, readings[next]);
         ++next;
         offering = false;
       }
-      ++cycles;
       quiet = moved ? 0 : quiet + 1;
-      const bool finished =
-          next == readings.size() && rtl_board.expected.empty() && model_board.expected.empty();
-      if (finished || quiet > 100000) break;
+      const bool drained = rtl_board.expected.empty() && model_board.expected.empty();
+      if ((next == readings.size() && drained) || quiet > 100000) break;
+      if (!resets_done && 2 * next >= readings.size() && reset_countdown-- == 0) {
+        resets_done = true;
+        rtl_board.reset();
+        model_board.reset();
+        offering = false;
+        hold_reset(3);
+      }
       // Inputs of the next cycle.
       // Every 4th reading waits for an idle kernel (all output sent): the set-up's own length
       // then shows at the ports instead of hiding behind the other bank's output.
-      const bool drained = rtl_board.expected.empty() && model_board.expected.empty();
       if (!offering && next < readings.size() && !gap(rng) && (next % 4 != 3 || drained))
         offering = true;
       ready_now = ready(rng);
@@ -198,47 +324,111 @@ struct CosimPair : sc_core::sc_module {
     }
     z_valid.write(false);
     y_ready.write(true);
-    done = true;
+    finished = true;
   }
 
-  bool ok() const {
-    return cycle_mismatches == 0 && rtl_board.errors == 0 && model_board.errors == 0 &&
-           rtl_board.readings == readings.size() && model_board.readings == readings.size();
+  bool clean() const {
+    return cycle_mismatches == 0 && rtl_write_errors == 0 && rtl_board.errors == 0 &&
+           model_board.errors == 0 && rtl_board.readings + rtl_board.lost == readings.size() &&
+           model_board.readings + model_board.lost == readings.size();
   }
-  void print(double seconds, std::uint64_t all_cycles) const {
+  // The fault is caught, first by the check that must see it first, at the cycle it shows.
+  bool caught() const {
+    if (fault_ == Fault::RtlPhi)
+      return rtl_write_errors > 0 && first_mismatch_signal == "index_ram_wdata" &&
+             first_mismatch_cycle == first_rtl_write_error;
+    return rtl_writes > 0 && first_mismatch_signal == "index_ram_we" &&
+           first_mismatch_cycle == first_rtl_write;
+  }
+  bool ok() const override { return fault_ == Fault::None ? clean() : caught(); }
+
+  void print(double seconds) const override {
     std::printf(
         "{\"kernel\": \"sectoral_ism\", \"test\": \"cosim\", \"config\": \"%s\", \"readings\": "
-        "%zu, \"cells\": %zu, \"cycles\": %llu, \"cycle_mismatches\": %llu, \"rtl_errors\": %zu, "
-        "\"model_errors\": %zu, \"systemc_cycles_per_second\": %.0f, \"ok\": %s}\n",
-        Config::name, rtl_board.readings, rtl_board.cells, static_cast<unsigned long long>(cycles),
-        static_cast<unsigned long long>(cycle_mismatches), rtl_board.errors, model_board.errors,
-        double(all_cycles) / seconds, ok() ? "true" : "false");
+        "%zu, \"lost_to_reset\": %zu, \"cells\": %zu, \"cycles\": %llu, \"index_writes\": %llu, "
+        "\"cycle_mismatches\": %llu, \"rtl_write_errors\": %llu, \"rtl_errors\": %zu, "
+        "\"model_errors\": %zu, \"seconds\": %.2f, \"cycles_per_second\": %.0f, \"ok\": %s}\n",
+        name_, rtl_board.readings, rtl_board.lost, rtl_board.cells,
+        static_cast<unsigned long long>(cycle), static_cast<unsigned long long>(rtl_writes),
+        static_cast<unsigned long long>(cycle_mismatches),
+        static_cast<unsigned long long>(rtl_write_errors), rtl_board.errors, model_board.errors,
+        seconds, double(cycle) / seconds, ok() ? "true" : "false");
     if (!first_mismatch.empty())
       std::printf("  first rtl/model mismatch: %s\n", first_mismatch.c_str());
+    if (!first_write_error.empty())
+      std::printf("  first rtl index write unlike golden: %s\n", first_write_error.c_str());
+    if (rtl_writes > 0)
+      std::printf("  first rtl index write: cycle %llu\n",
+                  static_cast<unsigned long long>(first_rtl_write));
     if (!rtl_board.first_error.empty()) std::printf("  rtl: %s\n", rtl_board.first_error.c_str());
     if (!model_board.first_error.empty())
       std::printf("  model: %s\n", model_board.first_error.c_str());
+    if (fault_ != Fault::None)
+      std::printf("  fault %s: %s\n", fault_ == Fault::RtlPhi ? "rtl_phi" : "sc_schedule",
+                  caught() ? "caught at its first cycle" : "NOT caught as expected");
   }
 };
 
+int usage() {
+  std::fprintf(stderr,
+               "usage: sectoral_ism_cosim <cone16|cone12|cone16_bug_phi> [seed] "
+               "[--fault rtl_phi|sc_schedule]\n");
+  return 2;
+}
+
 }  // namespace
 
-int sc_main(int, char*[]) {
-  const std::uint64_t seed = ism_bench_seed(42, "sectoral_ism_cosim");
-  sc_core::sc_clock clk("clk", 10, sc_core::SC_NS);
-  CosimPair<Vsectoral_ism_sc_cone16, SectoralIsmCone16> cone16("cone16", seed);
-  CosimPair<Vsectoral_ism_sc_cone12, SectoralIsmCone12> cone12("cone12", seed + 1);
-  cone16.clk(clk);
-  cone12.clk(clk);
-  const auto t0 = std::chrono::steady_clock::now();
-  std::uint64_t steps = 0;
-  while (!(cone16.done && cone12.done)) {
-    sc_core::sc_start(10000, sc_core::SC_NS);
-    steps += 1000;
+int sc_main(int argc, char* argv[]) {
+  if (argc < 2) return usage();
+  const std::string config = argv[1];
+  const char* seed_arg = nullptr;
+  Fault fault = Fault::None;
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--fault" && i + 1 < argc) {
+      const std::string f = argv[++i];
+      if (f == "rtl_phi")
+        fault = Fault::RtlPhi;
+      else if (f == "sc_schedule")
+        fault = Fault::ScSchedule;
+      else
+        return usage();
+    } else {
+      seed_arg = argv[i];
+    }
   }
+  std::uint64_t seed = 0;
+  if (seed_arg) {
+    seed = std::strtoull(seed_arg, nullptr, 0);
+    std::printf("[sectoral_ism_cosim] seed %llu (command line)\n",
+                static_cast<unsigned long long>(seed));
+  } else {
+    seed = ism_bench_seed(42, "sectoral_ism_cosim");
+  }
+  sc_core::sc_clock clk("clk", 10, sc_core::SC_NS);
+  std::unique_ptr<Cosim> run;
+  if (config == "cone16") {
+    auto p = std::make_unique<CosimPair<Vsectoral_ism_sc_cone16, SectoralIsmCone16>>(
+        "cone16", "cone16", seed, fault);
+    p->clk(clk);
+    run = std::move(p);
+  } else if (config == "cone12") {
+    auto p = std::make_unique<CosimPair<Vsectoral_ism_sc_cone12, SectoralIsmCone12>>(
+        "cone12", "cone12", seed, fault);
+    p->clk(clk);
+    run = std::move(p);
+  } else if (config == "cone16_bug_phi") {
+    auto p = std::make_unique<CosimPair<Vsectoral_ism_sc_cone16_bug, SectoralIsmCone16>>(
+        "cone16_bug_phi", "cone16_bug_phi", seed, fault);
+    p->clk(clk);
+    run = std::move(p);
+  } else {
+    return usage();
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!run->done()) sc_core::sc_start(10000, sc_core::SC_NS);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  cone16.print(seconds, steps);
-  cone12.print(seconds, steps);
-  return cone16.ok() && cone12.ok() ? 0 : 1;
+  run->print(seconds);
+  return run->ok() ? 0 : 1;
 }
