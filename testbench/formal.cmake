@@ -22,6 +22,8 @@ endif()
 set(_fv_dir ${CMAKE_CURRENT_SOURCE_DIR}/formal)
 set(_fv_rtl ${PROJECT_SOURCE_DIR}/rtl)
 set(_fv_out ${CMAKE_CURRENT_BINARY_DIR}/formal)
+# The RTL's packages, read before its modules by every proof.
+file(GLOB _fv_packages CONFIGURE_DEPENDS ${_fv_rtl}/*_pkg.sv)
 
 # intgrid_formal(NAME TOP top DEPTH k [INDUCTION] [COUNTEREXAMPLE] [PREPARE "yosys cmd"...]
 #                [PARAMS "-set P V ..."] [DEFINES D...] RTL files... HARNESS files...)
@@ -47,7 +49,8 @@ function(intgrid_formal name)
     list(APPEND opts --define ${d})
   endforeach()
   add_test(NAME ${name}
-           COMMAND bash ${_fv_dir}/prove.sh ${opts} --rtl ${arg_RTL} --harness ${arg_HARNESS})
+           COMMAND bash ${_fv_dir}/prove.sh ${opts} --rtl ${_fv_packages} ${arg_RTL}
+                   --harness ${arg_HARNESS})
   set_tests_properties(${name} PROPERTIES LABELS formal TIMEOUT 300)
 endfunction()
 

@@ -49,7 +49,9 @@ rm -f "$dir/model.smt2" "$dir/trace.vcd" "$dir/induction.vcd" "$dir/smtbmc.log"
 # the induction step needs: a negative test must be caught by the harness's port properties.
 ((induction && !expect_cex)) && defines+=(-DFORMAL_INDUCTION)
 read_opts="-sv -formal ${defines[*]}"
-script="read_verilog $read_opts ${rtl[*]}; ${prepare}read_verilog $read_opts ${harness[*]}"
+# The RTL is read as for synthesis (SYNTHESIS defined, as Yosys' plain read_verilog does): its
+# simulation-only checkers are for Verilator, and their SVA is beyond Yosys' own parser.
+script="read_verilog $read_opts -DSYNTHESIS ${rtl[*]}; ${prepare}read_verilog $read_opts ${harness[*]}"
 [ -z "$params" ] || script+="; chparam $params $top"
 script+="; prep -flatten -top $top; memory_map; opt -fast; dffunmap; write_smt2 -wires $dir/model.smt2"
 if ! yosys -q -l "$dir/yosys.log" -p "$script" >/dev/null; then
