@@ -92,6 +92,9 @@ module spill_register_formal #(
         if (past_push_q) begin
           assert (valid_o);  // a beat taken is offered in the next cycle
         end
+        if (past_ready_q && past_push_q && valid_i && ready_i) begin
+          assert (push && pop);  // so both sides held high move one beat a cycle through it
+        end
       end
 `ifdef FORMAL_INDUCTION
       // Induction strengthening: the two entries are the reference's two beats.
