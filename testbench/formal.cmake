@@ -8,6 +8,7 @@
 #   formal_index_fusion          rtl/index_fusion.sv = join + reference adders + 2-deep FIFO, B 8, LANES 8
 #   formal_sectoral_ism_stream   rtl/sectoral_ism_stream.sv: reads, release, throughput, y handshake,
 #                                and its cells = a ring-major reference, RINGS 3, BINS 4, SECTORS 2
+#   formal_sectoral_ism_stream_r5_b6_s3  the same for RINGS 5, BINS 6, SECTORS 3
 # All but the adder's (combinational: one step is complete) are k-induction proofs, unbounded.
 # A proof's files are in <build>/testbench/formal/<test>/: yosys.log, smtbmc.log, model.smt2, and
 # a counterexample in trace.vcd (induction.vcd for a failed induction step).
@@ -131,23 +132,33 @@ intgrid_formal(formal_index_fusion INDUCTION DEPTH 3 ${_fv_if})
 intgrid_formal_negative(formal_index_fusion_fault_last index_fusion.sv
   ".data_i ({a_last_i, sum})" ".data_i ({b_last_i, sum})" DEPTH 6 ${_fv_if})
 
-# --- rtl/sectoral_ism_stream.sv, RINGS 3, BINS 4, SECTORS 2, 4-bit indices, unbounded ----------
+# --- rtl/sectoral_ism_stream.sv, unbounded ------------------------------------------------------
+# RINGS:BINS:SECTORS:IDX_W: the small set, then one with bins and sectors not powers of two (the
+# address {ring, sector} has holes). Both back to back over banks of 12 and 30 cells.
 set(_fv_ism_expose ring_q sec_q bin_q s1_valid_q s1_last_q s1_const_q s1_const_idx_q
                    i_spill.a_full_q i_spill.b_full_q i_spill.a_data_q i_spill.b_data_q)
 list(TRANSFORM _fv_ism_expose PREPEND w:)
 string(JOIN " " _fv_ism_expose ${_fv_ism_expose})
-set(_fv_ism_params "-set RINGS 3 -set BINS 4 -set SECTORS 2 -set IDX_W 4")
-set(_fv_ism TOP sectoral_ism_stream_formal PARAMS ${_fv_ism_params}
-            PREPARE "chparam ${_fv_ism_params} sectoral_ism_stream"
-                    "hierarchy -top sectoral_ism_stream" proc flatten "expose ${_fv_ism_expose}"
-            HARNESS ${_fv_dir}/sectoral_ism_stream_formal.sv
-            RTL ${_fv_rtl}/spill_register.sv ${_fv_rtl}/sectoral_ism_stream.sv)
-intgrid_formal(formal_sectoral_ism_stream INDUCTION DEPTH 4 ${_fv_ism})
+foreach(_cfg 3:4:2:4 5:6:3:4)
+  string(REPLACE ":" ";" _p ${_cfg})
+  list(GET _p 0 _r)
+  list(GET _p 1 _b)
+  list(GET _p 2 _s)
+  list(GET _p 3 _w)
+  set(_params "-set RINGS ${_r} -set BINS ${_b} -set SECTORS ${_s} -set IDX_W ${_w}")
+  set(_fv_ism_${_r}_${_b}_${_s} TOP sectoral_ism_stream_formal PARAMS ${_params}
+      PREPARE "chparam ${_params} sectoral_ism_stream"
+              "hierarchy -top sectoral_ism_stream" proc flatten "expose ${_fv_ism_expose}"
+      HARNESS ${_fv_dir}/sectoral_ism_stream_formal.sv
+      RTL ${_fv_rtl}/spill_register.sv ${_fv_rtl}/sectoral_ism_stream.sv)
+endforeach()
+intgrid_formal(formal_sectoral_ism_stream INDUCTION DEPTH 4 ${_fv_ism_3_4_2})
+intgrid_formal(formal_sectoral_ism_stream_r5_b6_s3 INDUCTION DEPTH 4 ${_fv_ism_5_6_3})
 # Stage 1 waits for its cell to leave before the next read: a bubble every other cycle.
 intgrid_formal_negative(formal_sectoral_ism_stream_fault_bubble sectoral_ism_stream.sv
   "assign s1_advance = !s1_valid_q || sp_ready;" "assign s1_advance = !s1_valid_q;"
-  DEPTH 8 ${_fv_ism})
+  DEPTH 8 ${_fv_ism_3_4_2})
 # The window's first ring taken as before it: that ring's cells get the below index.
 intgrid_formal_negative(formal_sectoral_ism_stream_fault_window sectoral_ism_stream.sv
   "RING_W'(ring_q) + RING_W'(1) < r_lo_i" "RING_W'(ring_q) + RING_W'(1) <= r_lo_i"
-  DEPTH 8 ${_fv_ism})
+  DEPTH 8 ${_fv_ism_3_4_2})
