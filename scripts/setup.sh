@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages intgrid needs, skipping those already present.
 #   setup.sh [host]  the host library, the command and their tests (the demo needs only these)
-#   setup.sh full    also the benchmarks, the hardware toolchain (SystemC, Verilator, Yosys,
+#   setup.sh full    also the benchmarks, the hardware toolchain (SystemC, Verilator, Yosys, z3,
 #                    nextpnr-ice40), the embedded one (arm-none-eabi, QEMU) and Python (pybind11)
 set -euo pipefail
 group="${1:-host}"
@@ -16,7 +16,7 @@ case "$group" in
   full)
     packages+=(
       libbenchmark-dev
-      libsystemc-dev verilator yosys nextpnr-ice40
+      libsystemc-dev verilator yosys nextpnr-ice40 z3
       gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
       python3-dev pybind11-dev python3-numpy python3-pytest
     )
