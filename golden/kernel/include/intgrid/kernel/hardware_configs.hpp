@@ -98,10 +98,11 @@ inline IsmHwDerived derive_ism_hw(const IsmKernelTables& k, int index_bits) {
   d.mul_b_bits = std::max(d.coef_bits, d.e_bits);
   d.quad_shift = 2 * f.reading_frac_bits + f.quad_coef_frac_bits - f.log_frac_bits;
   // The density pre-fetch computes a ring's C densities while the sum pipeline runs the
-  // previous ring's V * C steps: C * ND + 4 cycles must fit in V * C.
+  // previous ring's V * C steps; its last density is stored in slot cycle C * ND + 4, so
+  // C * ND + 5 cycles must fit in V * C (rtl/sectoral_ism_density.sv).
   for (int kbits = 1; kbits <= d.mul_b_bits; ++kbits) {
     const int nd = (d.mul_b_bits + kbits - 1) / kbits;
-    if (C * nd + 4 <= V * C) {
+    if (C * nd + 5 <= V * C) {
       d.mul_digit_bits = kbits;
       d.mul_digits = nd;
       break;
