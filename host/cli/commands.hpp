@@ -20,6 +20,7 @@ void add_demo_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_slam_command(CLI::App& app);
 void add_globloc_command(CLI::App& app);
+void add_hw_config_command(CLI::App& app);
 // The SLAM settings as options (--cell, --lambda, --xi, ...), shared by slam and the figures.
 void add_slam_options(CLI::App& cmd, slam::SlamConfig& config);
 // Throws OptionError naming the flag for a SLAM setting the golden check refuses.
