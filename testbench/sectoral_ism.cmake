@@ -2,6 +2,7 @@
 #   rtl_manifest_sectoral_ism     rtl/sectoral_ism.f, .core and Bender.yml list the build's sources
 #   sectoral_ism_config_*         rtl/config/cone16 and cone12 are what `intgrid hw-config` writes
 #                                 from the sensors' parameters today, byte for byte
+#   sectoral_ism_defaults_cone16  the top's parameter defaults are rtl/config/cone16's
 #   ism_kernel_export             writes the C++ configuration header of cone16 and cone12 into the
 #                                 build tree (the RTL's files are the committed rtl/config/<name>)
 #   sectoral_ism_lint*            verilator --lint-only -Wall of rtl/sectoral_ism*.sv (defaults,
@@ -49,6 +50,13 @@ foreach(_cfg ${_ism_configs})
                    "-DARGS=${_ism_args_${_cfg}}" -P ${CMAKE_CURRENT_SOURCE_DIR}/check_ism_config.cmake)
   set_tests_properties(sectoral_ism_config_${_cfg} PROPERTIES LABELS hw)
 endforeach()
+
+# The top's defaults are cone16, ROM files included: an instance without parameters is a kernel.
+add_test(NAME sectoral_ism_defaults_cone16
+         COMMAND ${CMAKE_COMMAND} -DTOP=${_ism_rtl_dir}/sectoral_ism.sv
+                 -DVC=${_ism_rtl_dir}/config/cone16/sectoral_ism_cone16.vc
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/check_ism_defaults.cmake)
+set_tests_properties(sectoral_ism_defaults_cone16 PROPERTIES LABELS hw)
 
 # The C++ layers' header of each configuration, from golden at build time.
 add_executable(ism_kernel_export ism_kernel_export.cpp)

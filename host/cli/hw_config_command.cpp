@@ -102,6 +102,7 @@ void run_hw_config(const HwConfigArgs& a) {
     grid.fov = *a.fov_radians;
   else if (a.fov_degrees)
     grid.fov = figures::radians(*a.fov_degrees);
+  check_grid_options(grid, true);
   const kernel::IsmHwConfig config{a.name.c_str(), a.model, grid, a.bits, a.eps, a.format};
   // Tools resolve the ROM files from rtl/, where a configuration folder is rtl/config/NAME.
   const std::filesystem::path rom_dir =
