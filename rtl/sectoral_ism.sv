@@ -6,8 +6,9 @@
 //
 // A set-up engine (sectoral_ism_setup) computes the (ring, sector) indices of a reading into
 // one bank of a two-bank index RAM while the streamer (sectoral_ism_stream) sends the other
-// bank's cells, so set-up and output overlap. The configuration comes from parameters and
-// ROM files written by testbench/ism_kernel_export (sectoral_ism_<config>.vc / .svh / .ys).
+// bank's cells, so set-up and output overlap. The configuration is a folder rtl/config/<name>/
+// (ROM files and the parameters in three formats, written by `intgrid hw-config` from golden);
+// the defaults are cone16's. Widths that follow from the configuration are localparams.
 //
 // Timing: a reading is taken when the engine is idle and its next bank is free. Set-up takes
 // 2 cycles for a reading with no ring in the window (z >= reach), else
@@ -16,39 +17,48 @@
 // cell leaves 3 cycles after the set-up's last cycle (if the other bank is not streaming);
 // then one cell per cycle while y_ready_i is high.
 module sectoral_ism #(
-  parameter int unsigned READING_W              = 16,
+  // The configuration (rtl/config/<name>/: sectoral_ism_<name>.vc / .svh / .ys set all of it)
+  parameter int unsigned READING_W              = 16,   // reading port, READING_FRAC fractional bits
   parameter int unsigned RINGS                  = 40,
   parameter int unsigned BINS                   = 16,
-  parameter int unsigned SECTORS                = 4,
-  parameter int unsigned CLASSES                = 6,
-  parameter int unsigned CONDITIONS             = 9,
-  parameter int unsigned WINDOW                 = 13,
-  parameter int unsigned MAX_INDEX              = 127,
-  parameter int unsigned IDX_W                  = 8,
+  parameter int unsigned SECTORS                = 4,    // divides BINS
+  parameter int unsigned CLASSES                = 6,    // pattern classes of a ring
+  parameter int unsigned WINDOW                 = 13,   // rings within WINDOW cells of z count
+  parameter int unsigned IDX_W                  = 8,    // S_eps index width
   parameter int unsigned READING_FRAC           = 8,
   parameter int unsigned LOG_FRAC               = 8,
   parameter int unsigned QUAD_SHIFT             = 24,
+  // Word widths that depend on the tables' values (golden's derive_ism_hw)
   parameter int unsigned LOG_W                  = 20,
-  parameter int unsigned E_W                    = 12,
-  parameter int unsigned SQ_W                   = 24,
   parameter int unsigned COEF_W                 = 19,
-  parameter int unsigned MUL_B_W                = 19,
-  parameter int unsigned MUL_DIGIT_W            = 3,
   parameter int unsigned NORM_W                 = 12,
   parameter int unsigned WEIGHT_W               = 13,
   parameter int unsigned PHI_N                  = 2440,
   parameter int unsigned PHI_W                  = 8,
-  parameter int unsigned PHI_AW                 = 12,
   parameter int unsigned THR_W                  = 14,
   parameter int unsigned BUCKET_SHIFT           = 6,
   parameter int unsigned BUCKET_N               = 148,
-  parameter int unsigned BUCKET_W               = 7,
-  parameter              QUAD_COEF_FILE         = "sectoral_ism_cone16_quad_coef.mem",
-  parameter              LOG_NORM_FILE          = "sectoral_ism_cone16_log_norm.mem",
-  parameter              LOG_WEIGHT_FILE        = "sectoral_ism_cone16_log_weight.mem",
-  parameter              LOG_ADD_FILE           = "sectoral_ism_cone16_log_add.mem",
-  parameter              THRESHOLDS_FILE        = "sectoral_ism_cone16_thresholds.mem",
-  parameter              THRESHOLD_BUCKET_FILE  = "sectoral_ism_cone16_threshold_bucket.mem"
+  // The ROMs: $readmemh files, named relative to rtl/ (where tools run; Yosys also looks there)
+  parameter              QUAD_COEF_FILE         = "config/cone16/sectoral_ism_cone16_quad_coef.mem",
+  parameter              LOG_NORM_FILE          = "config/cone16/sectoral_ism_cone16_log_norm.mem",
+  parameter              LOG_WEIGHT_FILE        = "config/cone16/sectoral_ism_cone16_log_weight.mem",
+  parameter              LOG_ADD_FILE           = "config/cone16/sectoral_ism_cone16_log_add.mem",
+  parameter              THRESHOLDS_FILE        = "config/cone16/sectoral_ism_cone16_thresholds.mem",
+  parameter              THRESHOLD_BUCKET_FILE  = "config/cone16/sectoral_ism_cone16_threshold_bucket.mem",
+  // Derived from the configuration (sectoral_ism_pkg), not parameters to set
+  localparam int unsigned CONDITIONS  = sectoral_ism_pkg::conditions(SECTORS),
+  localparam int unsigned MAX_INDEX   = sectoral_ism_pkg::max_index_of(IDX_W),
+  localparam int unsigned E_W         = sectoral_ism_pkg::error_bits(WINDOW, READING_FRAC),
+  localparam int unsigned SQ_W        = sectoral_ism_pkg::square_bits(WINDOW, READING_FRAC),
+  localparam int unsigned MUL_B_W     = (COEF_W > E_W) ? COEF_W : E_W,
+  localparam int unsigned MUL_DIGIT_W = sectoral_ism_pkg::mul_digit_bits(MUL_B_W, CLASSES,
+                                                                         CONDITIONS),
+  localparam int unsigned PHI_AW      = sectoral_ism_pkg::unsigned_bits(64'(PHI_N) - 64'd1),
+  localparam int unsigned BUCKET_W    = sectoral_ism_pkg::unsigned_bits(64'(MAX_INDEX)),
+  localparam int unsigned RING_W      = sectoral_ism_pkg::ring_bits(RINGS),
+  localparam int unsigned RIDX_W      = sectoral_ism_pkg::addr_bits(RINGS),
+  localparam int unsigned J_W         = sectoral_ism_pkg::addr_bits(SECTORS),
+  localparam int unsigned IDX_AW      = RIDX_W + J_W
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -61,10 +71,21 @@ module sectoral_ism #(
   output logic [IDX_W-1:0]     y_data_o,
   output logic                 y_last_o
 );
-  localparam int unsigned RING_W = $clog2(RINGS + 2);
-  localparam int unsigned RIDX_W = (RINGS > 1) ? $clog2(RINGS) : 1;
-  localparam int unsigned J_W    = (SECTORS > 1) ? $clog2(SECTORS) : 1;
-  localparam int unsigned IDX_AW = RIDX_W + J_W;
+  // A configuration the kernel cannot run stops elaboration (the sub-modules check their own).
+  if (IDX_W < 2 || IDX_W > 16) begin : gen_check_idx_w
+    $error("sectoral_ism: IDX_W must be 2..16");
+  end
+  if (READING_W <= READING_FRAC || READING_W > 31) begin : gen_check_reading_w
+    $error("sectoral_ism: READING_W must exceed READING_FRAC and be at most 31");
+  end
+  // Readings at or past reach = (RINGS + WINDOW) << READING_FRAC inform no cell: reach must
+  // fit the port, or a reading past every ring could not be told apart.
+  if ((64'(RINGS) + 64'(WINDOW)) << READING_FRAC >= 64'd1 << READING_W) begin : gen_check_reach
+    $error("sectoral_ism: (RINGS + WINDOW) << READING_FRAC does not fit READING_W bits");
+  end
+  if (PHI_N < 1 || BUCKET_N < 1) begin : gen_check_tables
+    $error("sectoral_ism: PHI_N and BUCKET_N must be at least 1");
+  end
 
   logic unused_z_last;
   assign unused_z_last = z_last_i;

@@ -25,8 +25,8 @@ module sectoral_ism_density #(
   parameter int unsigned NORM_W         = 12,
   parameter              QUAD_COEF_FILE = "",
   parameter              LOG_NORM_FILE  = "",
-  parameter int unsigned COEF_AW = $clog2(RINGS * CLASSES),                 // derived
-  parameter int unsigned CLS_W   = (CLASSES > 1) ? $clog2(CLASSES) : 1     // derived
+  localparam int unsigned COEF_AW = (RINGS * CLASSES > 1) ? $clog2(RINGS * CLASSES) : 1,
+  localparam int unsigned CLS_W   = (CLASSES > 1) ? $clog2(CLASSES) : 1
 ) (
   input  logic                    clk_i,
   input  logic                    rst_ni,
@@ -39,6 +39,14 @@ module sectoral_ism_density #(
   input  logic [CLS_W-1:0]        cls_i,
   output logic [LOG_W-1:0]        dens_o
 );
+  // e and e^2 are sign-extended into wider words, the coefficient into the multiplier's.
+  if (SQ_W < E_W + 2 || MUL_B_W < COEF_W || MUL_B_W < E_W) begin : gen_check_words
+    $error("sectoral_ism_density: SQ_W must exceed E_W + 1, MUL_B_W hold COEF_W and E_W");
+  end
+  if (LOG_W <= NORM_W || QUAD_SHIFT >= SQ_W + MUL_B_W) begin : gen_check_density_w
+    $error("sectoral_ism_density: LOG_W must exceed NORM_W, QUAD_SHIFT be below the product");
+  end
+
   localparam int unsigned ND    = (MUL_B_W + MUL_DIGIT_W - 1) / MUL_DIGIT_W;
   localparam int unsigned T_W   = (ND > 1) ? $clog2(ND) : 1;
   localparam int unsigned P_W   = SQ_W + MUL_B_W;

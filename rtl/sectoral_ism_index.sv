@@ -26,6 +26,14 @@ module sectoral_ism_index #(
   output logic [ADDR_W-1:0] waddr_o,
   output logic [IDX_W-1:0]  wdata_o
 );
+  // An index must hold +-MAX_INDEX, a bucket entry any count 0..MAX_INDEX.
+  if (MAX_INDEX < 1 || IDX_W < 2 || MAX_INDEX >= (1 << (IDX_W - 1))) begin : gen_check_index
+    $error("sectoral_ism_index: MAX_INDEX must be 1 .. 2^(IDX_W-1) - 1");
+  end
+  if (MAX_INDEX >= (1 << BUCKET_W) || BUCKET_N < 1 || THR_W > LOG_W + 1) begin : gen_check_bucket
+    $error("sectoral_ism_index: BUCKET_W must hold MAX_INDEX, BUCKET_N be at least 1, THR_W at most LOG_W + 1");
+  end
+
   localparam int unsigned BAW   = (BUCKET_N > 1) ? $clog2(BUCKET_N) : 1;
   localparam int unsigned TAW   = (MAX_INDEX > 1) ? $clog2(MAX_INDEX) : 1;
   localparam int unsigned MAG_W = LOG_W + 1;

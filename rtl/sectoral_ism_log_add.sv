@@ -22,6 +22,11 @@ module sectoral_ism_log_add #(
   output logic [LOG_W:0]   res_o,
   output logic [TAG_W-1:0] tag_o
 );
+  // The ROM's addresses must reach every entry, and Phi - 1 fit the log word.
+  if (PHI_N < 1 || PHI_N > (1 << PHI_AW) || PHI_W < 1 || PHI_W >= LOG_W) begin : gen_check_phi
+    $error("sectoral_ism_log_add: PHI_N must be 1..2^PHI_AW, PHI_W 1..LOG_W - 1");
+  end
+
   // Stage 1: compare, difference, Phi address.
   logic signed [LOG_W-1:0] a_val, b_val;
   logic signed [LOG_W:0]   diff_ab, diff_ba;

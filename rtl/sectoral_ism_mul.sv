@@ -8,8 +8,8 @@ module sectoral_ism_mul #(
   parameter int unsigned B_W   = 19,
   parameter int unsigned K     = 3,
   parameter int unsigned TAG_W = 1,
-  parameter int unsigned ND    = (B_W + K - 1) / K,  // derived: do not override
-  parameter int unsigned P_W   = A_W + B_W           // derived: do not override
+  localparam int unsigned ND   = (B_W + K - 1) / K,
+  localparam int unsigned P_W  = A_W + B_W
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,
@@ -21,6 +21,10 @@ module sectoral_ism_mul #(
   output logic [P_W-1:0]   p_o,
   output logic [TAG_W-1:0] tag_o
 );
+  if (K < 1 || K > B_W || A_W < 1) begin : gen_check_digit
+    $error("sectoral_ism_mul: K must be 1..B_W, A_W at least 1");
+  end
+
   localparam int unsigned BP_W  = ND * K;  // b padded to whole digits
   localparam int unsigned CNT_W = (ND > 1) ? $clog2(ND) : 1;
   localparam int unsigned PP_W  = A_W + K;

@@ -4,7 +4,7 @@
 module sectoral_ism_ram #(
   parameter int unsigned WIDTH = 8,
   parameter int unsigned DEPTH = 256,
-  parameter int unsigned AW    = (DEPTH > 1) ? $clog2(DEPTH) : 1  // derived: do not override
+  localparam int unsigned AW   = (DEPTH > 1) ? $clog2(DEPTH) : 1
 ) (
   input  logic             clk_i,
   input  logic             we_i,
@@ -14,6 +14,10 @@ module sectoral_ism_ram #(
   input  logic [AW-1:0]    raddr_i,
   output logic [WIDTH-1:0] rdata_o
 );
+  if (WIDTH < 1 || DEPTH < 1) begin : gen_check_size
+    $error("sectoral_ism_ram: WIDTH and DEPTH must be at least 1");
+  end
+
   logic [WIDTH-1:0] mem_q [0:DEPTH-1];
 
   always_ff @(posedge clk_i) begin

@@ -52,11 +52,11 @@ module sectoral_ism_setup #(
   parameter              LOG_ADD_FILE     = "",
   parameter              THRESHOLDS_FILE  = "",
   parameter              BUCKET_FILE      = "",
-  // derived: do not override
-  parameter int unsigned RING_W = $clog2(RINGS + 2),                  // ring numbers 0..R+1
-  parameter int unsigned RIDX_W = (RINGS > 1) ? $clog2(RINGS) : 1,    // ring indices 0..R-1
-  parameter int unsigned J_W    = (SECTORS > 1) ? $clog2(SECTORS) : 1,
-  parameter int unsigned IDX_AW = RIDX_W + J_W                        // {ring index, sector}
+  // derived (sectoral_ism_pkg)
+  localparam int unsigned RING_W = sectoral_ism_pkg::ring_bits(RINGS),    // ring numbers 0..R+1
+  localparam int unsigned RIDX_W = sectoral_ism_pkg::addr_bits(RINGS),    // ring indices 0..R-1
+  localparam int unsigned J_W    = sectoral_ism_pkg::addr_bits(SECTORS),
+  localparam int unsigned IDX_AW = RIDX_W + J_W                           // {ring index, sector}
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -71,6 +71,30 @@ module sectoral_ism_setup #(
   output logic [IDX_AW-1:0]    idx_waddr_o,
   output logic [IDX_W-1:0]     idx_wdata_o
 );
+  // The schedule and the words hold only for a consistent configuration.
+  if (SECTORS < 1 || CONDITIONS != sectoral_ism_pkg::conditions(SECTORS)) begin : gen_check_conditions
+    $error("sectoral_ism_setup: CONDITIONS must be 2 SECTORS + 1, SECTORS at least 1");
+  end
+  if (CLASSES < 1 || WINDOW < 1 || RINGS < 1) begin : gen_check_sizes
+    $error("sectoral_ism_setup: CLASSES, WINDOW and RINGS must be at least 1");
+  end
+  if (MUL_DIGIT_W < 1 || MUL_DIGIT_W > MUL_B_W
+      || CLASSES * sectoral_ism_pkg::digits(MUL_B_W, MUL_DIGIT_W) + 4 > CONDITIONS * CLASSES)
+  begin : gen_check_schedule
+    // A ring's densities must be ready by the end of the slot that sums the ring before.
+    $error("sectoral_ism_setup: CLASSES * ceil(MUL_B_W / MUL_DIGIT_W) + 4 exceeds a ring slot");
+  end
+  if (E_W < sectoral_ism_pkg::error_bits(WINDOW, READING_FRAC)
+      || SQ_W < sectoral_ism_pkg::square_bits(WINDOW, READING_FRAC)) begin : gen_check_error_w
+    $error("sectoral_ism_setup: E_W or SQ_W too narrow for WINDOW << READING_FRAC");
+  end
+  if (MAX_INDEX < 1 || MAX_INDEX > sectoral_ism_pkg::max_index_of(IDX_W)) begin : gen_check_max_index
+    $error("sectoral_ism_setup: MAX_INDEX must be 1 .. 2^(IDX_W-1) - 1");
+  end
+  if (LOG_W <= WEIGHT_W || LOG_W <= LOG_FRAC + 1) begin : gen_check_log_w
+    $error("sectoral_ism_setup: LOG_W must exceed WEIGHT_W and LOG_FRAC + 1");
+  end
+
   localparam int unsigned V      = CONDITIONS;
   localparam int unsigned C      = CLASSES;
   localparam int unsigned L_A    = V * C;              // cycles of a ring slot

@@ -8,11 +8,11 @@ module sectoral_ism_stream #(
   parameter int unsigned BINS    = 16,
   parameter int unsigned SECTORS = 4,
   parameter int unsigned IDX_W   = 8,
-  // derived: do not override
-  parameter int unsigned RING_W  = $clog2(RINGS + 2),
-  parameter int unsigned RIDX_W  = (RINGS > 1) ? $clog2(RINGS) : 1,
-  parameter int unsigned J_W     = (SECTORS > 1) ? $clog2(SECTORS) : 1,
-  parameter int unsigned IDX_AW  = RIDX_W + J_W
+  // derived (sectoral_ism_pkg)
+  localparam int unsigned RING_W = sectoral_ism_pkg::ring_bits(RINGS),
+  localparam int unsigned RIDX_W = sectoral_ism_pkg::addr_bits(RINGS),
+  localparam int unsigned J_W    = sectoral_ism_pkg::addr_bits(SECTORS),
+  localparam int unsigned IDX_AW = RIDX_W + J_W
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
@@ -29,6 +29,14 @@ module sectoral_ism_stream #(
   output logic [IDX_W-1:0]  y_data_o,
   output logic              y_last_o
 );
+  // Every sector streams BINS / SECTORS bins: a remainder would silently drop bins.
+  if (SECTORS < 1 || SECTORS > BINS || BINS % SECTORS != 0) begin : gen_check_sectors
+    $error("sectoral_ism_stream: SECTORS must divide BINS");
+  end
+  if (RINGS < 1) begin : gen_check_rings
+    $error("sectoral_ism_stream: RINGS must be at least 1");
+  end
+
   localparam int unsigned BPS   = BINS / SECTORS;
   localparam int unsigned BPS_W = (BPS > 1) ? $clog2(BPS) : 1;
 

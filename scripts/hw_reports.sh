@@ -22,7 +22,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 build="$root/build/full"
-gen="$build/testbench/sectoral_ism"  # where testbench/sectoral_ism.cmake writes the ISM tables
+config="$root/rtl/config"  # the sectoral ISM's committed configurations (intgrid hw-config)
 docs="$root/docs"
 seed=1
 start_s=$(date +%s)
@@ -102,8 +102,8 @@ done
 
 # --- Synthesis and place and route -------------------------------------------------------------
 for cfg in cone16 cone12; do
-  { [ -f "$gen/sectoral_ism_$cfg.ys" ] && [ -f "$gen/sectoral_ism_${cfg}_log_add.mem" ]; } ||
-    die "$gen/sectoral_ism_$cfg.* missing (ROM files and parameters of the ISM): build first"
+  { [ -f "$config/$cfg/sectoral_ism_$cfg.ys" ] && [ -f "$config/$cfg/sectoral_ism_${cfg}_log_add.mem" ]; } ||
+    die "$config/$cfg/sectoral_ism_$cfg.* missing (ROM files and parameters of the ISM)"
 done
 
 # Timing harnesses: the kernel with a register on every input and every output port, so that
@@ -177,9 +177,9 @@ EOF
   local cfg upper zw iw
   for cfg in cone16 cone12; do
     upper=$(printf '%s' "$cfg" | tr '[:lower:]' '[:upper:]')
-    zw=$(sed -n 's/^chparam -set READING_W \([0-9]*\) .*/\1/p' "$gen/sectoral_ism_$cfg.ys")
-    iw=$(sed -n 's/^chparam -set IDX_W \([0-9]*\) .*/\1/p' "$gen/sectoral_ism_$cfg.ys")
-    { [ -n "$zw" ] && [ -n "$iw" ]; } || die "no READING_W / IDX_W in $gen/sectoral_ism_$cfg.ys"
+    zw=$(sed -n 's/^chparam -set READING_W \([0-9]*\) .*/\1/p' "$config/$cfg/sectoral_ism_$cfg.ys")
+    iw=$(sed -n 's/^chparam -set IDX_W \([0-9]*\) .*/\1/p' "$config/$cfg/sectoral_ism_$cfg.ys")
+    { [ -n "$zw" ] && [ -n "$iw" ]; } || die "no READING_W / IDX_W in $config/$cfg/sectoral_ism_$cfg.ys"
     cat >"$tmp/harness/sectoral_ism_${cfg}_timing.sv" <<EOF
 // sectoral_ism, configuration $cfg, with every port registered (timing harness only).
 \`include "sectoral_ism_$cfg.svh"
@@ -230,12 +230,14 @@ designs=(
   "index_fusion_b8_l1|index_fusion|B=8,LANES=1|index_fusion|chparam -set B 8 -set LANES 1 index_fusion|index_fusion_timing|chparam -set B 8 -set LANES 1 index_fusion_timing|80|-|$seeds_small"
   "index_fusion_b8_l8|index_fusion|B=8,LANES=8|index_fusion|chparam -set B 8 -set LANES 8 index_fusion|index_fusion_timing|chparam -set B 8 -set LANES 8 index_fusion_timing|-|yes|$seeds_small"
   "index_fusion_b8_l16|index_fusion|B=8,LANES=16|index_fusion|chparam -set B 8 -set LANES 16 index_fusion|index_fusion_timing|chparam -set B 8 -set LANES 16 index_fusion_timing|-|yes|-"
-  "sectoral_ism_cone16|sectoral_ism|config=cone16|sectoral_ism|script $gen/sectoral_ism_cone16.ys|sectoral_ism_cone16_timing||40|yes|$seeds_large"
-  "sectoral_ism_cone12|sectoral_ism|config=cone12|sectoral_ism|script $gen/sectoral_ism_cone12.ys|sectoral_ism_cone12_timing||40|yes|$seeds_large"
+  "sectoral_ism_cone16|sectoral_ism|config=cone16|sectoral_ism|script $config/cone16/sectoral_ism_cone16.ys|sectoral_ism_cone16_timing||40|yes|$seeds_large"
+  "sectoral_ism_cone12|sectoral_ism|config=cone12|sectoral_ism|script $config/cone12/sectoral_ism_cone12.ys|sectoral_ism_cone12_timing||40|yes|$seeds_large"
 )
 
-# Every run reads every file of rtl/ and every harness; `-top` keeps what the design uses.
-rtl_read="read_verilog -sv $root/rtl/*.sv; read_verilog -sv -I$gen $tmp/harness/*.sv"
+# Every run reads every file of rtl/ (the package first) and every harness; `-top` keeps what the
+# design uses. The configurations name their ROM files relative to rtl/, where Yosys finds them.
+rtl_read="read_verilog -sv $root/rtl/sectoral_ism_pkg.sv $(ls "$root"/rtl/*.sv | grep -v '_pkg\.sv$' | tr '\n' ' ');"
+rtl_read+=" read_verilog -sv -I$config/cone16 -I$config/cone12 $tmp/harness/*.sv"
 
 # place DIR FREQ SEED NAME: nextpnr on DIR/harness.json, log DIR/NAME.log, status DIR/NAME.rc.
 place() {
@@ -764,10 +766,9 @@ w("- Simulation: the Verilator testbenches' report programs in build/full (INTGR
   "each output checked against golden; the script refuses to report a run that failed its "
   "checks." % seed)
 w("- Yosys: every file of rtl/ read with `read_verilog -sv`, the configuration set with "
-  "`chparam` (index fusion, the adder) or the `sectoral_ism_<config>.ys` that "
-  "ism_kernel_export (testbench/ism_kernel_export.cpp; the text is golden's ism_table_files, "
-  "golden/kernel/src/table_export.cpp) writes into build/full/testbench/sectoral_ism with the "
-  "ROM files; then `synth_ice40 -top <top>` and `stat`, and separately `synth -flatten -top <top>` "
+  "`chparam` (index fusion, the adder) or the committed rtl/config/<config>/sectoral_ism_<config>.ys "
+  "(written with the ROM files by `intgrid hw-config`; the text is golden's ism_table_files, "
+  "golden/kernel/src/table_export.cpp); then `synth_ice40 -top <top>` and `stat`, and separately `synth -flatten -top <top>` "
   "and `stat`.")
 w("- nextpnr: `%s`; Fmax is the last \"Max frequency for clock\" line of its log. The design is "
   "the kernel with every input and output registered (harness written by the script into its "

@@ -6,6 +6,7 @@
 #   IndexFusionRtl.*          the Verilator testbench, one Verilated model per (B, LANES) below
 #   IndexFusionRtlFault.*     the checker's self-test on a deliberately broken RTL
 #   index_fusion_cosim        the SystemC co-simulation (Verilated RTL beside the SystemC model)
+#   rtl_manifest_index_fusion rtl/index_fusion.f, .core and Bender.yml list the build's sources
 # `index_fusion_rtl_test --report` prints the measured cycles, latency and simulation speed.
 find_package(GTest REQUIRED)
 include(GoogleTest)
@@ -13,6 +14,10 @@ include(GoogleTest)
 set(_if_rtl_dir ${PROJECT_SOURCE_DIR}/rtl)
 set(_if_rtl_files saturating_add.sv spill_register.sv index_fusion.sv)
 list(TRANSFORM _if_rtl_files PREPEND ${_if_rtl_dir}/ OUTPUT_VARIABLE _if_rtl)
+add_test(NAME rtl_manifest_index_fusion
+         COMMAND ${CMAKE_COMMAND} -DRTL_DIR=${_if_rtl_dir} -DKERNEL=index_fusion
+                 "-DFILES=${_if_rtl_files}" -P ${CMAKE_CURRENT_SOURCE_DIR}/check_rtl_manifests.cmake)
+set_tests_properties(rtl_manifest_index_fusion PROPERTIES LABELS hw)
 # Verilator's generated C++ is not ours to clean up for the project's warning flags.
 set(_if_quiet OPT_FAST -w OPT_SLOW -w OPT_GLOBAL -w)
 

@@ -1,12 +1,8 @@
-// ism_kernel_export NAME OUTDIR: writes the tables of the named sectoral ISM hardware
-// configuration (golden/kernel/include/intgrid/kernel/hardware_configs.hpp) into OUTDIR, as
-// golden's ism_table_files builds them (intgrid/kernel/table_export.hpp):
-//   sectoral_ism_NAME_config.hpp  a constexpr configuration struct for hls/ and systemc/
-//   sectoral_ism_NAME_*.mem       one $readmemh file per ROM of rtl/
-//   sectoral_ism_NAME.vc          Verilator -G parameter list of the top `sectoral_ism`
-//   sectoral_ism_NAME.svh         the same as a parameter-override macro for wrappers
-//   sectoral_ism_NAME.ys          the same as Yosys chparam commands
-// The parameter files name the .mem files by their absolute paths in OUTDIR. Output is
+// ism_kernel_export NAME OUTDIR: writes sectoral_ism_NAME_config.hpp, the constexpr
+// configuration struct of the C++ layers (hls/, systemc/) for the named sectoral ISM hardware
+// configuration (golden/kernel/include/intgrid/kernel/hardware_configs.hpp), into OUTDIR, as
+// golden's ism_table_files builds it (intgrid/kernel/table_export.hpp). The RTL's files of the
+// same configuration are committed in rtl/config/NAME (written by `intgrid hw-config`). Output is
 // deterministic; a file whose content is unchanged is not rewritten.
 #include <cstdio>
 #include <exception>
@@ -35,11 +31,9 @@ void write_if_changed(const std::filesystem::path& path, const std::string& text
 
 int run(const std::string& name, const std::filesystem::path& dir) {
   const intgrid::kernel::IsmHwConfig& config = intgrid::kernel::ism_hw_config(name);
-  const std::filesystem::path out_dir = std::filesystem::absolute(dir);
-  std::filesystem::create_directories(out_dir);
-  for (const intgrid::kernel::GeneratedFile& file :
-       intgrid::kernel::ism_table_files(config, out_dir))
-    write_if_changed(out_dir / file.name, file.text);
+  std::filesystem::create_directories(dir);
+  for (const intgrid::kernel::GeneratedFile& file : intgrid::kernel::ism_table_files(config, {}))
+    if (file.name.ends_with("_config.hpp")) write_if_changed(dir / file.name, file.text);
   return 0;
 }
 

@@ -1,9 +1,15 @@
 # Kernel 2, the sectoral ISM (integer): every test here is labelled hw.
-#   ism_kernel_export             writes the tables of a named configuration (cone16, cone12) into
-#                                 the build tree: C++ config header, $readmemh ROM files, parameters
+#   rtl_manifest_sectoral_ism     rtl/sectoral_ism.f, .core and Bender.yml list the build's sources
+#   sectoral_ism_config_*         rtl/config/cone16 and cone12 are what `intgrid hw-config` writes
+#                                 from the sensors' parameters today, byte for byte
+#   sectoral_ism_defaults_cone16  the top's parameter defaults are rtl/config/cone16's
+#   ism_kernel_export             writes the C++ configuration header of cone16 and cone12 into the
+#                                 build tree (the RTL's files are the committed rtl/config/<name>)
 #   sectoral_ism_lint*            verilator --lint-only -Wall of rtl/sectoral_ism*.sv (defaults,
-#                                 cone16, cone12, the broken variant)
-#   sectoral_ism_synth_ice40      Yosys synth_ice40 of cone16 (if yosys is found)
+#                                 cone16, cone12, a generated configuration, the broken variant)
+#   sectoral_ism_illegal_*        configurations the parameter checks must refuse at elaboration
+#   sectoral_ism_synth_ice40_*    rtl/synth.sh (Yosys synth_ice40) of cone16, cone12 and the
+#                                 generated configuration (if yosys is found)
 #   SectoralIsmHls/*              hls/sectoral_ism.hpp against golden (every reading of the port)
 #   SectoralIsmHlsTop.*           the HLS top functions (compiled with __SYNTHESIS__) against golden
 #   HlsWidth*                     hls/ with width checking on: no value exceeds its declared width
@@ -16,55 +22,128 @@ find_package(GTest REQUIRED)
 include(GoogleTest)
 
 set(_ism_rtl_dir ${PROJECT_SOURCE_DIR}/rtl)
-set(_ism_rtl_files sectoral_ism.sv sectoral_ism_setup.sv sectoral_ism_density.sv
-    sectoral_ism_mul.sv sectoral_ism_log_add.sv sectoral_ism_index.sv sectoral_ism_stream.sv
-    sectoral_ism_rom.sv sectoral_ism_ram.sv spill_register.sv)
+# The order of rtl/sectoral_ism.f (the package first); rtl_manifest_sectoral_ism holds the
+# manifests to this list.
+set(_ism_rtl_files sectoral_ism_pkg.sv sectoral_ism_rom.sv sectoral_ism_ram.sv spill_register.sv
+    sectoral_ism_mul.sv sectoral_ism_density.sv sectoral_ism_log_add.sv sectoral_ism_index.sv
+    sectoral_ism_setup.sv sectoral_ism_stream.sv sectoral_ism.sv)
 list(TRANSFORM _ism_rtl_files PREPEND ${_ism_rtl_dir}/ OUTPUT_VARIABLE _ism_rtl)
 set(_ism_gen ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism)
 set(_ism_configs cone16 cone12)
+set(_ism_roms quad_coef log_norm log_weight log_add thresholds threshold_bucket)
 # Verilator's generated C++ is not ours to clean up for the project's warning flags.
 set(_ism_quiet OPT_FAST -w OPT_SLOW -w OPT_GLOBAL -w)
 
-# --- Tables, generated at build time from golden ---------------------------------------------
-# The text of every file is golden's (intgrid/kernel/table_export.hpp); the program writes it.
+add_test(NAME rtl_manifest_sectoral_ism
+         COMMAND ${CMAKE_COMMAND} -DRTL_DIR=${_ism_rtl_dir} -DKERNEL=sectoral_ism
+                 "-DFILES=${_ism_rtl_files}" -P ${CMAKE_CURRENT_SOURCE_DIR}/check_rtl_manifests.cmake)
+set_tests_properties(rtl_manifest_sectoral_ism PROPERTIES LABELS hw)
+
+# --- The configurations: committed in rtl/config, checked against golden ------------------------
+# The sensors' parameters of golden/kernel/include/intgrid/kernel/hardware_configs.hpp, as
+# `intgrid hw-config` takes them.
+set(_ism_args_cone16 --fov 30 --rings 40 --bins 16 --sectors 4 --cell 0.05 --sigma 0.02
+    --k-d 0.05 --k-theta 0.5 --k-size 0.5 --bits 8 --eps 0.05)
+set(_ism_args_cone12 --fov-rad 0.3 --rings 25 --bins 12 --sectors 3 --cell 0.1 --sigma 0.05
+    --k-d 0 --k-theta 0.3 --k-size 0.2 --bits 6 --eps 0.2)
+foreach(_cfg ${_ism_configs})
+  add_test(NAME sectoral_ism_config_${_cfg}
+           COMMAND ${CMAKE_COMMAND} -DINTGRID=$<TARGET_FILE:intgrid> -DNAME=${_cfg}
+                   -DREF=${_ism_rtl_dir}/config/${_cfg} -DOUT=${_ism_gen}/regenerated/${_cfg}
+                   "-DARGS=${_ism_args_${_cfg}}" -P ${CMAKE_CURRENT_SOURCE_DIR}/check_ism_config.cmake)
+  set_tests_properties(sectoral_ism_config_${_cfg} PROPERTIES LABELS hw)
+endforeach()
+
+# The top's defaults are cone16, ROM files included: an instance without parameters is a kernel.
+add_test(NAME sectoral_ism_defaults_cone16
+         COMMAND ${CMAKE_COMMAND} -DTOP=${_ism_rtl_dir}/sectoral_ism.sv
+                 -DVC=${_ism_rtl_dir}/config/cone16/sectoral_ism_cone16.vc
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/check_ism_defaults.cmake)
+set_tests_properties(sectoral_ism_defaults_cone16 PROPERTIES LABELS hw)
+
+# The C++ layers' header of each configuration, from golden at build time.
 add_executable(ism_kernel_export ism_kernel_export.cpp)
 target_link_libraries(ism_kernel_export PRIVATE intgrid_kernel)
 set(_ism_tables "")
 foreach(_cfg ${_ism_configs})
-  set(_out ${_ism_gen}/sectoral_ism_${_cfg})
-  set(_files ${_out}_config.hpp ${_out}.vc ${_out}.svh ${_out}.ys)
-  foreach(_rom quad_coef log_norm log_weight log_add thresholds threshold_bucket)
-    list(APPEND _files ${_out}_${_rom}.mem)
-  endforeach()
-  add_custom_command(OUTPUT ${_files}
+  set(_header ${_ism_gen}/sectoral_ism_${_cfg}_config.hpp)
+  add_custom_command(OUTPUT ${_header}
                      COMMAND ism_kernel_export ${_cfg} ${_ism_gen}
                      DEPENDS ism_kernel_export
-                     COMMENT "Sectoral ISM tables of ${_cfg}" VERBATIM)
-  list(APPEND _ism_tables ${_files})
-  # verilate() runs Verilator once at configure time, before any table exists: it then sees an
-  # empty parameter file (the RTL's defaults). The build writes the real one, and Verilator runs
-  # again because the file is among its dependencies.
-  if(NOT EXISTS ${_out}.vc)
-    file(WRITE ${_out}.vc "// replaced at build time by ism_kernel_export\n")
-  endif()
+                     COMMENT "Sectoral ISM configuration header of ${_cfg}" VERBATIM)
+  list(APPEND _ism_tables ${_header})
+  # The Verilated models run in the build tree: their ROM files by absolute path, after the
+  # committed parameters (which name them relative to rtl/). Later -G options win.
+  set(_roms_vc ${_ism_gen}/sectoral_ism_${_cfg}_roms.vc)
+  set(_text "// ${_cfg}'s ROM files for models that run outside rtl/\n")
+  foreach(_rom ${_ism_roms})
+    string(TOUPPER ${_rom} _key)
+    string(APPEND _text "-G${_key}_FILE=\\\"${_ism_rtl_dir}/config/${_cfg}/sectoral_ism_${_cfg}_${_rom}.mem\\\"\n")
+  endforeach()
+  file(CONFIGURE OUTPUT ${_roms_vc} CONTENT "${_text}")
+  set(_ism_vargs_${_cfg} -f ${_ism_rtl_dir}/config/${_cfg}/sectoral_ism_${_cfg}.vc -f ${_roms_vc})
 endforeach()
 add_custom_target(sectoral_ism_tables DEPENDS ${_ism_tables})
 
+# A configuration from command-line parameters, generated into the build tree by the tests (a
+# folder config/wide12 beside which the tools run, as they run in rtl/): a wide, coarse sensor.
+set(_ism_ip_root ${_ism_gen}/generated)
+add_test(NAME sectoral_ism_config_generated
+         COMMAND $<TARGET_FILE:intgrid> hw-config --name wide12 --out ${_ism_ip_root}/config/wide12
+                 --fov 60 --rings 24 --bins 12 --sectors 2 --cell 0.1 --sigma 0.04 --k-d 0.02
+                 --k-theta 0.4 --k-size 0.3 --bits 7 --eps 0.1)
+set_tests_properties(sectoral_ism_config_generated PROPERTIES LABELS hw
+                     FIXTURES_SETUP sectoral_ism_generated)
+
 # --- Lint and synthesis ----------------------------------------------------------------------
 intgrid_lint_rtl(sectoral_ism_lint sectoral_ism ${_ism_rtl_files})
-intgrid_lint_rtl(sectoral_ism_lint_cone16 sectoral_ism -f ${_ism_gen}/sectoral_ism_cone16.vc
-                 ${_ism_rtl_files})
-intgrid_lint_rtl(sectoral_ism_lint_cone12 sectoral_ism -f ${_ism_gen}/sectoral_ism_cone12.vc
-                 ${_ism_rtl_files})
+foreach(_cfg ${_ism_configs})
+  intgrid_lint_rtl(sectoral_ism_lint_${_cfg} sectoral_ism -f sectoral_ism.f
+                   -f config/${_cfg}/sectoral_ism_${_cfg}.vc)
+endforeach()
 intgrid_lint_rtl(sectoral_ism_lint_broken sectoral_ism -DSECTORAL_ISM_BUG_PHI ${_ism_rtl_files})
+add_test(NAME sectoral_ism_lint_generated
+         COMMAND verilator --lint-only -Wall --top-module sectoral_ism -F ${_ism_rtl_dir}/sectoral_ism.f
+                 -f config/wide12/sectoral_ism_wide12.vc
+         WORKING_DIRECTORY ${_ism_ip_root})
+set_tests_properties(sectoral_ism_lint_generated PROPERTIES LABELS hw
+                     FIXTURES_REQUIRED sectoral_ism_generated)
+# Configurations the parameter checks refuse at elaboration, each with its own message: 15 bins
+# in 4 sectors (would stream 12 of 15 bins a ring), a reading port too narrow for reach, a bucket
+# ROM word too narrow for the count (a sub-module's own check), and a derived width set by hand.
+set(_ism_illegal
+    "bins|-GBINS=15|sectoral_ism|SECTORS must divide BINS"
+    "reading_w|-GREADING_W=13|sectoral_ism|does not fit READING_W bits"
+    "bucket_w|-GBUCKET_W=6|sectoral_ism_index|BUCKET_W must hold MAX_INDEX"
+    "derived|-GE_W=16|sectoral_ism|not found in the design: E_W")
+foreach(_case ${_ism_illegal})
+  string(REPLACE "|" ";" _case "${_case}")
+  list(GET _case 0 _name)
+  list(GET _case 1 _param)
+  list(GET _case 2 _top)
+  list(GET _case 3 _message)
+  intgrid_lint_rtl(sectoral_ism_illegal_${_name} ${_top} ${_param} -f sectoral_ism.f)
+  set_tests_properties(sectoral_ism_illegal_${_name} PROPERTIES
+                       PASS_REGULAR_EXPRESSION "%(Error|Warning-USERERROR)[^\n]*${_message}")
+endforeach()
 find_program(INTGRID_YOSYS yosys)
 if(INTGRID_YOSYS)
+  foreach(_cfg ${_ism_configs})
+    add_test(NAME sectoral_ism_synth_ice40_${_cfg} COMMAND sh ${_ism_rtl_dir}/synth.sh ${_cfg})
+    set_tests_properties(sectoral_ism_synth_ice40_${_cfg} PROPERTIES LABELS hw
+                         ENVIRONMENT YOSYS=${INTGRID_YOSYS})
+  endforeach()
+  add_test(NAME sectoral_ism_synth_ice40_generated
+           COMMAND sh ${_ism_rtl_dir}/synth.sh wide12 ${_ism_ip_root})
+  set_tests_properties(sectoral_ism_synth_ice40_generated PROPERTIES LABELS hw
+                       ENVIRONMENT YOSYS=${INTGRID_YOSYS} FIXTURES_REQUIRED sectoral_ism_generated)
   string(JOIN " " _ism_yosys_read ${_ism_rtl_files})
-  add_test(NAME sectoral_ism_synth_ice40
+  add_test(NAME sectoral_ism_illegal_yosys
            COMMAND ${INTGRID_YOSYS} -q -p
-                   "read_verilog -sv ${_ism_yosys_read}; script ${_ism_gen}/sectoral_ism_cone16.ys; synth_ice40 -top sectoral_ism; check -assert"
+                   "read_verilog -sv ${_ism_yosys_read}; chparam -set BINS 15 sectoral_ism; hierarchy -top sectoral_ism"
            WORKING_DIRECTORY ${_ism_rtl_dir})
-  set_tests_properties(sectoral_ism_synth_ice40 PROPERTIES LABELS hw)
+  set_tests_properties(sectoral_ism_illegal_yosys PROPERTIES LABELS hw
+                       PASS_REGULAR_EXPRESSION "ERROR: sectoral_ism_stream: SECTORS must divide BINS")
 endif()
 
 # --- Plain C++: the HLS function against golden ------------------------------------------------
@@ -95,7 +174,7 @@ add_dependencies(sectoral_ism_vmodels sectoral_ism_tables)
 set(_ism_vdirs "")
 foreach(_variant cone16 cone12 cone16_bug)
   string(REPLACE "_bug" "" _cfg ${_variant})
-  set(_args -f ${_ism_gen}/sectoral_ism_${_cfg}.vc)
+  set(_args ${_ism_vargs_${_cfg}})
   if(_variant MATCHES "_bug$")
     list(APPEND _args -DSECTORAL_ISM_BUG_PHI)
   endif()
@@ -134,7 +213,7 @@ target_link_libraries(sectoral_ism_sc_vmodels PUBLIC intgrid_systemc_lib)
 set(_ism_sc_vdirs "")
 foreach(_variant cone16 cone12 cone16_bug)
   string(REPLACE "_bug" "" _cfg ${_variant})
-  set(_args -f ${_ism_gen}/sectoral_ism_${_cfg}.vc)
+  set(_args ${_ism_vargs_${_cfg}})
   if(_variant MATCHES "_bug$")
     list(APPEND _args -DSECTORAL_ISM_BUG_PHI)
   endif()

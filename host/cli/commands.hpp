@@ -6,6 +6,7 @@
 
 #include "cli/map_job.hpp"
 #include "cli/options.hpp"
+#include "intgrid/core/sectoral_ism.hpp"
 #include "intgrid/localization/global_localization.hpp"
 #include "intgrid/slam/grid_slam.hpp"
 
@@ -20,6 +21,7 @@ void add_demo_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_slam_command(CLI::App& app);
 void add_globloc_command(CLI::App& app);
+void add_hw_config_command(CLI::App& app);
 // The SLAM settings as options (--cell, --lambda, --xi, ...), shared by slam and the figures.
 void add_slam_options(CLI::App& cmd, slam::SlamConfig& config);
 // Throws OptionError naming the flag for a SLAM setting the golden check refuses.
@@ -41,6 +43,9 @@ void print_json(const nlohmann::json& j);
 // --arith int|float; the caller states the default.
 CLI::Option* add_arithmetic_option(CLI::App& cmd, core::Arithmetic& arithmetic,
                                    const std::string& help);
+// The polar grid's options --fov, --cell, --rings, --bins, --sectors, checked together
+// (check_sectoral_grid's limits, named as flags; with kernel, the integer kernel's sectors).
+void check_grid_options(const core::SectoralGrid& grid, bool kernel);
 // Throws OptionError unless the reading --z is a finite distance >= 0.
 void check_reading_option(double z);
 

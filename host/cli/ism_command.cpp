@@ -62,31 +62,6 @@ T required(const std::optional<T>& value, const char* flag, const char* when) {
   return *value;
 }
 
-// The polar grid's options, checked together (check_sectoral_grid's limits, named as flags).
-void check_grid_options(const core::SectoralGrid& g, bool kernel) {
-  if (g.sectors > g.bins)
-    bad_option("--sectors",
-               std::to_string(g.sectors) + " exceeds --bins " + std::to_string(g.bins) + " (A)");
-  if (g.bins % g.sectors != 0)
-    bad_option("--bins", std::to_string(g.bins) + " is no multiple of --sectors " +
-                             std::to_string(g.sectors) +
-                             ", so sectors would be unequal or asymmetric about the axis");
-  if (static_cast<long long>(g.rings) * g.bins > core::kMaxPolarCells)
-    bad_option("--rings", std::to_string(g.rings) + " x --bins " + std::to_string(g.bins) +
-                              " exceeds " + std::to_string(core::kMaxPolarCells) + " polar cells");
-  if (kernel && g.sectors > kernel::kMaxKernelSectors)
-    bad_option("--sectors", std::to_string(g.sectors) + " exceeds the integer kernel's " +
-                                std::to_string(kernel::kMaxKernelSectors) +
-                                " (--arith int, --agreement)");
-  // What is left to the golden check (nothing, with the options' own checks) is named too.
-  naming_flags({{"FOV", "--fov"},
-                {"cell size", "--cell"},
-                {"rings", "--rings"},
-                {"bins", "--bins"},
-                {"sectors", "--sectors"}},
-               [&] { core::check_sectoral_grid(g); });
-}
-
 void run_narrow_ism(const IsmArgs& a) {
   const core::GaussianBeamModel model{required(a.sigma, "--sigma", "without --fov"),
                                       a.k_d.value_or(0.0)};
@@ -181,6 +156,30 @@ void run_sectoral_ism(const IsmArgs& a) {
 }
 
 }  // namespace
+
+void check_grid_options(const core::SectoralGrid& g, bool kernel) {
+  if (g.sectors > g.bins)
+    bad_option("--sectors",
+               std::to_string(g.sectors) + " exceeds --bins " + std::to_string(g.bins) + " (A)");
+  if (g.bins % g.sectors != 0)
+    bad_option("--bins", std::to_string(g.bins) + " is no multiple of --sectors " +
+                             std::to_string(g.sectors) +
+                             ", so sectors would be unequal or asymmetric about the axis");
+  if (static_cast<long long>(g.rings) * g.bins > core::kMaxPolarCells)
+    bad_option("--rings", std::to_string(g.rings) + " x --bins " + std::to_string(g.bins) +
+                              " exceeds " + std::to_string(core::kMaxPolarCells) + " polar cells");
+  if (kernel && g.sectors > kernel::kMaxKernelSectors)
+    bad_option("--sectors", std::to_string(g.sectors) + " exceeds the integer kernel's " +
+                                std::to_string(kernel::kMaxKernelSectors) +
+                                " (--arith int, --agreement)");
+  // What is left to the golden check (nothing, with the options' own checks) is named too.
+  naming_flags({{"FOV", "--fov"},
+                {"cell size", "--cell"},
+                {"rings", "--rings"},
+                {"bins", "--bins"},
+                {"sectors", "--sectors"}},
+               [&] { core::check_sectoral_grid(g); });
+}
 
 void add_ism_command(CLI::App& app) {
   auto a = std::make_shared<IsmArgs>();

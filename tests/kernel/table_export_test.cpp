@@ -192,7 +192,7 @@ TEST_P(TableExport, ParameterFilesAgreeAndNameTheMemFiles) {
   const std::map<std::string, std::string> vc = vc_params(files.at(base + ".vc"));
   EXPECT_EQ(vc, svh_params(files.at(base + ".svh")));
   EXPECT_EQ(vc, ys_params(files.at(base + ".ys")));
-  EXPECT_EQ(vc.size(), 27u + std::size(kIsmRomNames));
+  EXPECT_EQ(vc.size(), 19u + std::size(kIsmRomNames));
   // A few parameters the RTL sizes its words and ROMs by.
   EXPECT_EQ(vc.at("RINGS"), std::to_string(k.grid.rings));
   EXPECT_EQ(vc.at("IDX_W"), std::to_string(cfg.bits));

@@ -110,35 +110,28 @@ std::vector<GeneratedFile> ism_table_files(const IsmHwConfig& cfg,
     add_mem("threshold_bucket", mem_file(w, d.bucket_bits, "thresholds below b << bucket_shift"));
   }
 
-  // The top's parameters, in one list for the three formats.
+  // The top's parameters, in one list for the three formats: the configuration and the widths
+  // that depend on the tables' values. The top derives the rest (rtl/sectoral_ism_pkg.sv).
   const std::vector<std::pair<std::string, long long>> params = {
       {"READING_W", kIsmReadingBits},
       {"RINGS", k.grid.rings},
       {"BINS", k.grid.bins},
       {"SECTORS", k.grid.sectors},
       {"CLASSES", C},
-      {"CONDITIONS", V},
       {"WINDOW", k.window_cells},
-      {"MAX_INDEX", k.max_index},
       {"IDX_W", d.index_bits},
       {"READING_FRAC", k.format.reading_frac_bits},
       {"LOG_FRAC", k.format.log_frac_bits},
       {"QUAD_SHIFT", d.quad_shift},
       {"LOG_W", d.log_bits},
-      {"E_W", d.e_bits},
-      {"SQ_W", d.sq_bits},
       {"COEF_W", d.coef_bits},
-      {"MUL_B_W", d.mul_b_bits},
-      {"MUL_DIGIT_W", d.mul_digit_bits},
       {"NORM_W", d.norm_bits},
       {"WEIGHT_W", d.weight_bits},
       {"PHI_N", static_cast<long long>(k.log_add.size())},
       {"PHI_W", d.phi_bits},
-      {"PHI_AW", d.phi_addr_bits},
       {"THR_W", d.thr_bits},
       {"BUCKET_SHIFT", d.bucket_shift},
       {"BUCKET_N", d.bucket_count},
-      {"BUCKET_W", d.bucket_bits},
   };
   std::vector<std::pair<std::string, std::string>> files;
   for (const char* rom : kIsmRomNames)

@@ -6,7 +6,8 @@
 //   sectoral_ism_NAME.svh         the same as a parameter-override macro for wrappers
 //   sectoral_ism_NAME.ys          the same as Yosys chparam commands
 //   sectoral_ism_NAME_config.hpp  a constexpr configuration struct for hls/ and systemc/
-// Pure: nothing is read or written; testbench/ism_kernel_export.cpp writes the files.
+// Pure: nothing is read or written; `intgrid hw-config` (host/cli/hw_config_command.cpp) writes
+// the RTL's files, testbench/ism_kernel_export.cpp the C++ header.
 #pragma once
 
 #include <filesystem>
@@ -29,7 +30,8 @@ inline constexpr const char* kIsmRomNames[] = {"quad_coef", "log_norm",   "log_w
 
 // The files of `config`: the six .mem files (in kIsmRomNames order), then .vc, .svh, .ys and
 // _config.hpp. The parameter files name each .mem file as mem_dir / its name (lexically
-// normalized; pass an absolute folder, where the .mem files will be written). Deterministic:
+// normalized): the folder as the tools will resolve it, e.g. config/cone16 for a configuration
+// folder rtl/config/cone16 (tools run in rtl/). Deterministic:
 // the same configuration and folder give the same bytes. Throws std::invalid_argument where
 // derive_ism_hw does (a configuration that does not fit the RTL's words).
 std::vector<GeneratedFile> ism_table_files(const IsmHwConfig& config,
