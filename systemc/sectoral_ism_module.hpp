@@ -129,6 +129,7 @@ struct SectoralIsmModule : sc_core::sc_module {
   void run() {
     s_ = State{};
     write_outputs();
+    z_ready.write(false);  // low from a reset edge to the next edge (rtl: out_of_reset_q)
     wait();
     while (true) {
       step(z_valid.read(), z_data.read(), y_ready.read());
