@@ -54,7 +54,11 @@ module spill_register #(
 `ifdef INTGRID_FAULT_SPILL_REFUSE  // fault for the checkers' self-test: input refused while a is full
   assign ready_o = !a_full_q;
 `else
+`ifdef INTGRID_FAULT_SPILL_REFUSE  // fault for the checkers' self-test: input refused while a is full
+  assign ready_o = !a_full_q;
+`else
   assign ready_o = !b_full_q;  // registered: room for one more beat whatever the output does
+`endif
 `endif
   assign valid_o = a_full_q;
   assign data_o  = a_data_q;

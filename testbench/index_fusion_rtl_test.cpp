@@ -343,6 +343,50 @@ TEST(IndexFusionRtlAssertions, SourceChangingAnOfferedBeatFails) {
   EXPECT_NE(log.find("a_source_holds"), std::string::npos) << log;
 }
 
+TEST(IndexFusionRtlAssertions, SourceBChangingAnOfferedBeatFails) {
+  Harness<Vindex_fusion_b8_l8, 8, 8> dut("index_fusion_rtl_source_rule_b");
+  dut.reset(3);
+  FusionDrive<8, 8> d;
+  d.b_valid = true;
+  d.b_last = false;
+  EXPECT_FALSE(dut.apply(d).b_ready);
+  testing::internal::CaptureStdout();
+  dut.tick();
+  d.b_last = true;
+  dut.apply(d);
+  dut.tick();
+  const std::string log = testing::internal::GetCapturedStdout();
+  EXPECT_TRUE(dut.assertion_failed());
+  EXPECT_NE(log.find("b_source_holds"), std::string::npos) << log;
+}
+
+// The RTL built with INTGRID_FAULT_READY_IN_RESET and INTGRID_FAULT_SPILL_REFUSE: ready during
+// reset, and a beat refused while entry b is free, each fire their assertion.
+TEST(IndexFusionRtlAssertions, ReadyInResetFiresReadyLowInReset) {
+  Harness<Vindex_fusion_fault_protocol_b4_l1, 4, 1> dut("index_fusion_rtl_fault_ready");
+  testing::internal::CaptureStdout();
+  const int ready = dut.reset(3, true);
+  const std::string log = testing::internal::GetCapturedStdout();
+  EXPECT_GT(ready, 0);
+  EXPECT_TRUE(dut.assertion_failed());
+  EXPECT_NE(log.find("ready_low_in_reset"), std::string::npos) << log;
+}
+TEST(IndexFusionRtlAssertions, RefusingSpillRegisterFiresJoinTakesBeat) {
+  Harness<Vindex_fusion_fault_protocol_b4_l1, 4, 1> dut("index_fusion_rtl_fault_refuse");
+  dut.reset(3);  // valids low: the fault in reset has nothing to accept
+  ASSERT_FALSE(dut.assertion_failed());
+  FusionDrive<4, 1> d;
+  d.a_valid = d.b_valid = true;
+  testing::internal::CaptureStdout();
+  EXPECT_TRUE(dut.apply(d).a_ready);  // empty: taken into entry a
+  dut.tick();
+  EXPECT_FALSE(dut.apply(d).a_ready);  // entry b is free, yet refused
+  dut.tick();
+  const std::string log = testing::internal::GetCapturedStdout();
+  EXPECT_TRUE(dut.assertion_failed());
+  EXPECT_NE(log.find("join_takes_beat"), std::string::npos) << log;
+}
+
 // The checker's self-test: the RTL built with INTGRID_FAULT_SATURATION lets a sum of exactly
 // -2^(B-1) through unsaturated. Over the exhaustive run every lane meets each of the 129 pairs
 // with a + b = -128 once, so the scoreboard must report exactly 129 * LANES mismatching cells,

@@ -78,17 +78,20 @@ gtest_discover_tests(sectoral_ism_hls_test PROPERTIES LABELS hw DISCOVERY_TIMEOU
 
 # --- The Verilated models: one per configuration, and the broken variants ----------------------
 # cone16_bug: Phi read one entry off; cone16_bubble: the output stream's stage 1 waits for the
-# spill register when empty (INTGRID_FAULT_STREAM_BUBBLE, a bubble at the start of a bank).
+# spill register when empty (INTGRID_FAULT_STREAM_BUBBLE, a bubble at the start of a bank);
+# cone12_ready: z_ready not held low in reset (INTGRID_FAULT_READY_IN_RESET).
 add_library(sectoral_ism_vmodels STATIC)
 add_dependencies(sectoral_ism_vmodels sectoral_ism_tables)
 set(_ism_vdirs "")
-foreach(_variant cone16 cone12 cone16_bug cone16_bubble)
+foreach(_variant cone16 cone12 cone16_bug cone16_bubble cone12_ready)
   string(REGEX REPLACE "_.*" "" _cfg ${_variant})
   set(_args -f ${_ism_gen}/sectoral_ism_${_cfg}.vc)
   if(_variant MATCHES "_bug$")
     list(APPEND _args -DSECTORAL_ISM_BUG_PHI)
   elseif(_variant MATCHES "_bubble$")
     list(APPEND _args -DINTGRID_FAULT_STREAM_BUBBLE)
+  elseif(_variant MATCHES "_ready$")
+    list(APPEND _args -DINTGRID_FAULT_READY_IN_RESET)
   endif()
   set(_vdir ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/${_variant})
   verilate(sectoral_ism_vmodels SOURCES ${_ism_rtl} TOP_MODULE sectoral_ism

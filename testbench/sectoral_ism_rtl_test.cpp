@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "Vsectoral_ism_cone12.h"
+#include "Vsectoral_ism_cone12_ready.h"
 #include "Vsectoral_ism_cone16.h"
 #include "Vsectoral_ism_cone16_bubble.h"
 #include "Vsectoral_ism_cone16_bug.h"
@@ -344,6 +345,19 @@ TEST(SectoralIsmRtl, ReadyIsLowInReset) {
   opt.stop_after_cycles = 300;
   bench.run(ism_edge_readings(k, kIsmReadingBits), opt);
   EXPECT_EQ(bench.reset(2, true), 0);
+  EXPECT_FALSE(bench.assertion_failed());
+}
+
+// The RTL built with INTGRID_FAULT_READY_IN_RESET (z_ready without the out-of-reset flag) fails
+// the reset assertion in the bench's first reset already.
+TEST(SectoralIsmRtlAssertions, ReadyInResetFiresReadyLowAfterResetEdge) {
+  ::testing::internal::CaptureStdout();
+  IsmRtlBench<Vsectoral_ism_cone12_ready> bench(kernel_of("cone12"));
+  const int ready = bench.reset(2, true);
+  const std::string log = ::testing::internal::GetCapturedStdout();
+  EXPECT_GT(ready, 0);
+  EXPECT_TRUE(bench.assertion_failed());
+  EXPECT_NE(log.find("ready_low_after_reset_edge"), std::string::npos) << log;
 }
 
 // A reset in the middle of a set-up, of an output, or of both (the other bank), after which the
@@ -367,7 +381,7 @@ void reset_in_mid_stream() {
   const std::uint64_t stops[] = {
       want.accept_cycles[0] + 20,       // the first reading's set-up
       want.first_cells[0] + cells / 2,  // its output (the next set-up runs beside it)
-      want.first_cells[1] + cells - 1,  // the last cells of the second reading
+      want.first_cells[1] + cells - 1,  // the second reading's output
       want.cycles * 2 / 3};
   for (const std::uint64_t stop : stops) {
     IsmRtlBench<Model> bench(k, trace_path());
@@ -376,6 +390,9 @@ void reset_in_mid_stream() {
     const IsmBenchResult before = bench.run(z, part);
     ASSERT_TRUE(before.stopped) << stop;
     EXPECT_TRUE(before.ok()) << before.summary();
+    if (stop == stops[0]) EXPECT_EQ(before.cells, 0u) << "not in the first set-up";
+    if (stop == stops[1] || stop == stops[2])
+      EXPECT_GT(before.cells % cells, 0u) << "not in mid-output: " << stop;
     EXPECT_EQ(bench.reset(1, true), 0) << "z_ready in reset, stop at " << stop;
     const IsmBenchResult got = bench.run(z, opt);
     EXPECT_TRUE(got.ok()) << "reset at " << stop << ": " << got.summary();
