@@ -49,7 +49,20 @@ struct SimRun {
   double host_seconds = 0.0;
 };
 
-// One Verilated model with its clock, reset and optional VCD trace.
+// The wave file of a model: <suite>.<test> inside a test (.2, .3 ... for its next models),
+// else the run's name.
+inline std::string wave_name(const std::string& run) {
+  static std::string test;
+  static int models = 0;
+  const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
+  if (info == nullptr) return run;
+  const std::string name = std::string(info->test_suite_name()) + "." + info->name();
+  models = name == test ? models + 1 : 1;
+  test = name;
+  return models > 1 ? name + "." + std::to_string(models) : name;
+}
+
+// One Verilated model with its clock, reset and optional FST trace.
 template <class VModel, int B, int LANES>
 class Harness {
  public:
@@ -59,11 +72,14 @@ class Harness {
     context_.randReset(init_seed < 0 ? 0 : 2);
     if (init_seed >= 0) context_.randSeed(init_seed);
     context_.fatalOnError(false);  // a failed assertion fails the run, it does not abort
+    // Verilator's runtime looks models up in the thread's context: with several harnesses
+    // alive, it must be this one's whenever its model is built or destroyed.
+    Verilated::threadContextp(&context_);
     top_ = std::make_unique<VModel>(&context_, "top");
     if (g_trace.on) {
       vcd_ = std::make_unique<VerilatedFstC>();
       top_->trace(vcd_.get(), 99);
-      const std::string path = g_trace.dir + "/" + name + ".fst";
+      const std::string path = g_trace.dir + "/" + wave_name(name) + ".fst";
       vcd_->open(path.c_str());
       std::printf("[trace] %s\n", path.c_str());
     }
@@ -72,7 +88,9 @@ class Harness {
   }
   ~Harness() {
     if (vcd_) vcd_->close();
+    Verilated::threadContextp(&context_);
     top_->final();
+    top_.reset();
   }
 
   // Synchronous reset for `cycles` cycles, inputs idle unless `offer` (both valids high).
@@ -447,6 +465,15 @@ void report(const char* model) {
   std::fflush(stdout);
 }
 
+// A failing test says how to see its waves (one test, its own FST files).
+class WavesHint : public testing::EmptyTestEventListener {
+  void OnTestEnd(const testing::TestInfo& info) override {
+    if (info.result()->Failed() && !g_trace.on)
+      std::printf("[waves] INTGRID_WAVES=<dir> index_fusion_rtl_test --gtest_filter=%s.%s\n",
+                  info.test_suite_name(), info.name());
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -479,5 +506,6 @@ int main(int argc, char** argv) {
     return 0;
   }
   testing::InitGoogleTest(&argc, argv);
+  testing::UnitTest::GetInstance()->listeners().Append(new WavesHint);
   return RUN_ALL_TESTS();
 }

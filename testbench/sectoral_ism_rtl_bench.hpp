@@ -84,6 +84,8 @@ struct IsmBenchOptions {
   double gap = 0.3;       // probability of holding z_valid low a cycle before offering a reading
   double ready = 0.7;     // probability of y_ready each cycle (1 = no back-pressure)
   bool isolated = false;  // offer a reading only when the kernel has sent everything before
+  // If not 0: offer a reading only once at most this many cells of the earlier ones are unsent.
+  std::size_t offer_at_unsent = 0;
   bool stop_at_first_error = false;
   std::uint64_t max_idle_cycles = 100000;  // fail if nothing moves this long
   // Leave the run after this many cycles, whatever is in flight (to reset in mid-stream).
@@ -134,6 +136,9 @@ class IsmRtlBench {
     context_->randReset(init_seed < 0 ? 0 : 2);
     if (init_seed >= 0) context_->randSeed(init_seed);
     context_->fatalOnError(false);  // a failed assertion is counted by the bench, not aborted
+    // Verilator's runtime looks models up in the thread's context: with several benches alive,
+    // it must be this bench's one whenever its model is built or destroyed.
+    Verilated::threadContextp(context_.get());
     model_ = std::make_unique<Model>(context_.get());
     model_->clk_i = 0;
 #if VM_TRACE
@@ -152,7 +157,9 @@ class IsmRtlBench {
 #if VM_TRACE
     if (trace_) trace_->close();
 #endif
+    Verilated::threadContextp(context_.get());
     model_->final();
+    model_.reset();
   }
 
   IsmBenchResult run(std::span<const std::uint32_t> readings, const IsmBenchOptions& opt) {
@@ -184,7 +191,9 @@ class IsmRtlBench {
       // Inputs for this cycle.
       if (!offering && next < readings.size()) {
         const bool drained = expected.empty() && !timing_setup;
-        if ((!opt.isolated || drained) && !gap(rng)) offering = true;
+        const std::size_t unsent = expected.size() * cells_per_reading - out_cell;
+        const bool late = opt.offer_at_unsent == 0 || unsent <= opt.offer_at_unsent;
+        if ((!opt.isolated || drained) && late && !gap(rng)) offering = true;
       }
       model_->z_valid_i = offering;
       using ZData = std::remove_reference_t<decltype(model_->z_data_i)>;
@@ -304,8 +313,8 @@ class IsmRtlBench {
   }
 
   // Synchronous reset for `cycles` cycles, then one cycle out of reset, inputs idle except that
-  // a reading is offered throughout when `offer`. Returns the cycles, from the first reset edge
-  // to the first cycle out of reset, in which z_ready was high (the RTL promises none).
+  // a reading is offered during the reset when `offer`. Returns the cycles, from the first reset
+  // edge to the first cycle out of reset, in which z_ready was high (the RTL promises none).
   int reset(int cycles, bool offer = false) {
     int ready = 0;
     model_->rst_ni = 0;
@@ -318,11 +327,10 @@ class IsmRtlBench {
       ready += model_->z_ready_o;
     }
     model_->rst_ni = 1;
+    model_->z_valid_i = 0;  // withdrawn in reset: out of reset an offer would have to stay
     model_->eval();
     ready += model_->z_ready_o;
     tick();
-    model_->z_valid_i = 0;
-    model_->eval();
     return ready;
   }
   // The model's ports, for directed tests; tick() clocks it once.

@@ -52,17 +52,29 @@ const IsmKernelTables& kernel_of(const char* name) {
   return std::string(name) == "cone16" ? cone16 : cone12;
 }
 
-std::string trace_path() {
-  const char* dir = std::getenv("INTGRID_WAVES");
-  if (!dir || !*dir) return {};
+// DIR/<suite>.<test>.fst for the first bench of a test, .2.fst, .3.fst ... for the next ones.
+std::string waves_path(const char* dir) {
+  static std::string test;
+  static int benches = 0;
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  return std::string(dir) + "/" + info->test_suite_name() + "." + info->name() + ".fst";
+  const std::string name = std::string(info->test_suite_name()) + "." + info->name();
+  benches = name == test ? benches + 1 : 1;
+  test = name;
+  return std::string(dir) + "/" + name +
+         (benches > 1 ? "." + std::to_string(benches) : std::string()) + ".fst";
+}
+bool waves_on() {
+  const char* dir = std::getenv("INTGRID_WAVES");
+  return dir && *dir;
+}
+std::string trace_path() {
+  return waves_on() ? waves_path(std::getenv("INTGRID_WAVES")) : "";
 }
 
 // A failing test says how to see its waves (one test, one FST file).
 class WavesHint : public ::testing::EmptyTestEventListener {
   void OnTestEnd(const ::testing::TestInfo& info) override {
-    if (info.result()->Failed() && trace_path().empty())
+    if (info.result()->Failed() && !waves_on())
       std::printf("[waves] INTGRID_WAVES=<dir> sectoral_ism_rtl_test --gtest_filter=%s.%s\n",
                   info.test_suite_name(), info.name());
   }
@@ -77,7 +89,7 @@ const bool g_waves_hint = [] {
 std::vector<std::uint32_t> stimulus(const IsmKernelTables& k, std::size_t random,
                                     std::uint64_t seed) {
   std::vector<std::uint32_t> z = ism_edge_readings(k, kIsmReadingBits);
-  if (!trace_path().empty()) {
+  if (waves_on()) {
     z.erase(z.begin() + 12, z.end() - 7);
     random = std::min<std::size_t>(random, 5);
   }
@@ -132,7 +144,7 @@ void every_reading() {
   std::iota(z.begin(), z.end(), 0u);
   const std::uint64_t seed = ism_bench_seed(7, Config::name);
   std::shuffle(z.begin(), z.end(), std::mt19937_64(seed));
-  if (!trace_path().empty()) z.resize(24);
+  if (waves_on()) z.resize(24);
   IsmRtlBench<Model> bench(k, trace_path());
   IsmBenchOptions opt;
   opt.setup_cycles = &sc::sectoral_ism_setup_cycles<Config>;
@@ -292,16 +304,11 @@ TEST(SectoralIsmRtl, Cone12BackToBackFollowsTheScheduleExactly) {
   back_to_back_schedule<Vsectoral_ism_cone12, SectoralIsmCone12>();
 }
 
-// Readings whose banks are written about when the previous bank has gone, under back-pressure:
-// the start of a bank meets a full spill register. The intact RTL wastes no ready cycle; the
-// fault INTGRID_FAULT_STREAM_BUBBLE (stage 1, empty, waits for the spill register) does, and
-// its assertion fires.
-std::vector<std::uint32_t> bank_start_readings(const IsmKernelTables& k, std::uint64_t seed) {
-  std::vector<std::uint32_t> z = ism_random_readings(k, kIsmReadingBits, 150, seed);
-  for (std::size_t i = 0; i < z.size(); i += 3) z[i] = k.reach + std::uint32_t(i);  // short set-ups
-  return z;
-}
-
+// A bank written while the previous reading's last cells wait in the spill register, under
+// back-pressure: each reading (past reach, 2 set-up cycles) is offered only once at most 2 cells
+// of the one before are unsent. The intact RTL wastes no ready cycle; the fault
+// INTGRID_FAULT_STREAM_BUBBLE (an empty stage 1 waits for the spill register) does, and its
+// assertion fires.
 template <class Model>
 IsmBenchResult back_pressure_at_bank_starts(const char* what, std::string* log) {
   const IsmKernelTables& k = kernel_of("cone16");
@@ -311,8 +318,11 @@ IsmBenchResult back_pressure_at_bank_starts(const char* what, std::string* log) 
   opt.seed = ism_bench_seed(41, what);
   opt.ready = 0.5;
   opt.gap = 0.0;
+  opt.offer_at_unsent = 2;
+  std::vector<std::uint32_t> z(waves_on() ? 8 : 150);
+  for (std::size_t i = 0; i < z.size(); ++i) z[i] = k.reach + std::uint32_t(i);
   ::testing::internal::CaptureStdout();
-  const IsmBenchResult r = bench.run(bank_start_readings(k, opt.seed), opt);
+  const IsmBenchResult r = bench.run(z, opt);
   *log = ::testing::internal::GetCapturedStdout();
   return r;
 }
@@ -321,7 +331,7 @@ TEST(SectoralIsmRtl, Cone16BackPressureWastesNoReadyCycle) {
   std::string log;
   const IsmBenchResult r = back_pressure_at_bank_starts<Vsectoral_ism_cone16>("cone16", &log);
   EXPECT_TRUE(r.ok()) << r.summary() << "\n" << log;
-  EXPECT_EQ(r.readings, 150u);
+  EXPECT_GT(r.readings, 0u);
 }
 
 TEST(SectoralIsmRtl, StreamBubbleIsCaught) {
@@ -390,9 +400,11 @@ void reset_in_mid_stream() {
     const IsmBenchResult before = bench.run(z, part);
     ASSERT_TRUE(before.stopped) << stop;
     EXPECT_TRUE(before.ok()) << before.summary();
-    if (stop == stops[0]) EXPECT_EQ(before.cells, 0u) << "not in the first set-up";
-    if (stop == stops[1] || stop == stops[2])
+    if (stop == stops[0]) {
+      EXPECT_EQ(before.cells, 0u) << "not in the first set-up";
+    } else if (stop != stops[3]) {
       EXPECT_GT(before.cells % cells, 0u) << "not in mid-output: " << stop;
+    }
     EXPECT_EQ(bench.reset(1, true), 0) << "z_ready in reset, stop at " << stop;
     const IsmBenchResult got = bench.run(z, opt);
     EXPECT_TRUE(got.ok()) << "reset at " << stop << ": " << got.summary();
@@ -462,6 +474,7 @@ template <class Model>
 std::string drive_stream(std::uint64_t seed, bool* failed) {
   VerilatedContext context;
   context.fatalOnError(false);
+  Verilated::threadContextp(&context);  // the runtime's view while m lives (see the bench)
   Model m(&context);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution ready(0.5);
