@@ -7,7 +7,7 @@
 // valid and the output buffer has room), LANES combinational saturating adders, then a
 // spill_register that holds the outputs stable while y_valid_o && !y_ready_i and cuts every path
 // from y_ready_i back to the inputs. The input ready depends combinationally on the input valids
-// and on a register, never on y_ready_i.
+// and on a register, never on y_ready_i; it is low while rst_ni is low.
 //
 // Data buses: lane l of a beat is bits [l*B + B-1 : l*B], lane 0 in the least significant bits,
 // B-bit two's complement (the packing of hls/index_fusion.hpp).
@@ -47,7 +47,11 @@ module index_fusion #(
   logic [LANES*B-1:0] sum;
 
   assign join_valid = a_valid_i && b_valid_i;   // both halves of the next beat are present
-  assign fire       = join_valid && join_ready; // the beat moves: a and b consumed, sum buffered
+`ifdef INTGRID_FAULT_READY_IN_RESET  // fault for the checkers' self-test: ready during reset
+  assign fire       = join_valid && join_ready;
+`else
+  assign fire       = join_valid && join_ready && rst_ni; // the beat moves (never in reset): a and b consumed, sum buffered
+`endif
   assign a_ready_o  = fire;                     // a is taken only together with b
   assign b_ready_o  = fire;                     // b is taken only together with a
 
@@ -77,4 +81,27 @@ module index_fusion #(
   // b_last_i is part of the b beat but does not shape the output frames (see the header).
   logic unused_b_last;
   assign unused_b_last = b_last_i;
+
+`ifndef SYNTHESIS
+  // Checkers, simulation only (Yosys defines SYNTHESIS); Verilator needs --assert. The output
+  // stream's own rules are checked in i_spill_register.
+  // Nothing is taken during reset.
+  ready_low_in_reset: assert property (@(posedge clk_i) !rst_ni |-> !a_ready_o && !b_ready_o)
+    else $error("index_fusion: input ready during reset");
+  // The join wastes no cycle: both halves present and room in the buffer move a beat (II = 1).
+  join_takes_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      a_valid_i && b_valid_i && !i_spill_register.b_full_q |-> a_ready_o && b_ready_o)
+    else $error("index_fusion: input refused with room in the output buffer");
+  // The sources' rule (AXI4-Stream): an offered beat stays, unchanged, until it is taken.
+  a_source_holds: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      a_valid_i && !a_ready_o |=> a_valid_i && $stable({a_last_i, a_data_i}))
+    else $error("index_fusion: stream a changed an offered beat before it was taken");
+  b_source_holds: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      b_valid_i && !b_ready_o |=> b_valid_i && $stable({b_last_i, b_data_i}))
+    else $error("index_fusion: stream b changed an offered beat before it was taken");
+  // Only a four-state simulator can see X here (two-state Verilator cannot).
+  known_after_reset: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      !$isunknown({a_ready_o, b_ready_o, y_valid_o}) && (!y_valid_o || !$isunknown({y_last_o, y_data_o})))
+    else $error("index_fusion: unknown output after reset");
+`endif
 endmodule

@@ -10,7 +10,8 @@
 // (ROM files and the parameters in three formats, written by `intgrid hw-config` from golden);
 // the defaults are cone16's. Widths that follow from the configuration are localparams.
 //
-// Timing: a reading is taken when the engine is idle and its next bank is free. Set-up takes
+// Timing: a reading is taken when the engine is idle and its next bank is free (never in reset
+// nor in the first cycle after it: z_ready_o is low from a reset edge to the next edge). Set-up takes
 // 2 cycles for a reading with no ring in the window (z >= reach), else
 //   ND + 15 + (n + 1) * CONDITIONS * CLASSES + 2 n + n * (3 SECTORS + 1)
 // cycles, n the rings within WINDOW cells of z and ND = ceil(MUL_B_W / MUL_DIGIT_W). The first
@@ -101,7 +102,19 @@ module sectoral_ism #(
   logic [RING_W-1:0] setup_lo, setup_hi;
   logic [IDX_W-1:0]  setup_below;
   logic              z_fire;
-  assign z_ready_o = setup_idle && !full_q[wb_q];  // the engine is idle and its next bank is free
+  // Low from a reset edge to the first edge out of reset, so that no reading is offered a ready
+  // that the reset then ignores; z_ready_o stays a function of registers only.
+  logic out_of_reset_q;
+  always_ff @(posedge clk_i) begin
+    out_of_reset_q <= rst_ni;
+  end
+`ifdef INTGRID_FAULT_READY_IN_RESET  // fault for the checkers' self-test: ready during reset
+  assign z_ready_o = setup_idle && !full_q[wb_q];
+  logic unused_out_of_reset;
+  assign unused_out_of_reset = out_of_reset_q;
+`else
+  assign z_ready_o = out_of_reset_q && setup_idle && !full_q[wb_q];  // out of reset, the engine is idle and its next bank is free
+`endif
   assign z_fire    = z_valid_i && z_ready_o;       // a reading is accepted
 
   logic              idx_we, idx_re;
@@ -182,4 +195,25 @@ module sectoral_ism #(
       below_q[wb_q] <= setup_below;
     end
   end
+
+`ifndef SYNTHESIS
+  // Checkers, simulation only (Yosys defines SYNTHESIS); Verilator needs --assert. The output
+  // stream's rules are checked in i_stream and its spill register.
+  // No reading is taken in reset: z_ready_o is low in every cycle after a reset edge. (The
+  // checker's own flag starts at 0, so that a random initial state does not fire it.)
+  bit after_reset_edge_q = 1'b0;
+  always_ff @(posedge clk_i) begin
+    after_reset_edge_q <= !rst_ni;
+  end
+  ready_low_after_reset_edge: assert property (@(posedge clk_i) after_reset_edge_q |-> !z_ready_o)
+    else $error("sectoral_ism: z_ready after a reset edge");
+  // The source's rule (AXI4-Stream): an offered reading stays, unchanged, until it is taken.
+  z_source_holds: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      z_valid_i && !z_ready_o |=> z_valid_i && $stable(z_data_i))
+    else $error("sectoral_ism: z changed an offered reading before it was taken");
+  // Only a four-state simulator can see X here (two-state Verilator cannot).
+  known_after_reset: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      !$isunknown({z_ready_o, y_valid_o}) && (!y_valid_o || !$isunknown({y_last_o, y_data_o})))
+    else $error("sectoral_ism: unknown output after reset");
+`endif
 endmodule

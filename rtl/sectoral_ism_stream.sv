@@ -48,7 +48,11 @@ module sectoral_ism_stream #(
   logic              sp_ready;
 
   logic s1_advance, issue, last_cell, below, above;
+`ifdef INTGRID_FAULT_STREAM_BUBBLE  // fault for the checkers' self-test: an empty stage 1 waits for the spill register
+  assign s1_advance = sp_ready;
+`else
   assign s1_advance = !s1_valid_q || sp_ready;  // stage 1 is empty or its cell enters the spill register
+`endif
   assign issue      = full_i && s1_advance;     // read the next cell of the bank into stage 1
   assign last_cell  = (ring_q == RIDX_W'(RINGS - 1)) && (sec_q == J_W'(SECTORS - 1))
                    && (bin_q == BPS_W'(BPS - 1));
@@ -86,7 +90,11 @@ module sectoral_ism_stream #(
 
   always_ff @(posedge clk_i) begin
     if (issue) begin
+`ifdef INTGRID_FAULT_STREAM_LAST  // fault for the checkers' self-test: last on every bin of the last sector
+      s1_last_q      <= (ring_q == RIDX_W'(RINGS - 1)) && (sec_q == J_W'(SECTORS - 1));
+`else
       s1_last_q      <= last_cell;
+`endif
       s1_const_q     <= below || above;
       s1_const_idx_q <= below ? below_i : '0;
     end
@@ -106,4 +114,35 @@ module sectoral_ism_stream #(
   );
   assign y_data_o = sp_data_out[IDX_W-1:0];
   assign y_last_o = sp_data_out[IDX_W];
+
+`ifndef SYNTHESIS
+  // Checkers, simulation only (Yosys defines SYNTHESIS); Verilator needs --assert. Stability of
+  // y is checked in i_spill.
+  // Throughput while a bank is full: stage 1 reads a cell whenever it is empty or its cell can
+  // move on, so the bank's cells reach y one per cycle.
+  bank_read_without_wait: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      full_i && (!s1_valid_q || !i_spill.b_full_q) |-> re_o)
+    else $error("sectoral_ism_stream: a full bank waits with room in stage 1 (bubble)");
+  // A cell in stage 1 is on y in the next cycle (it enters the spill register, or that one is full).
+  stage_feeds_output: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      s1_valid_q |=> y_valid_o)
+    else $error("sectoral_ism_stream: a read cell is not on y in the next cycle (bubble)");
+  // y_last on every RINGS * BINS-th cell and on no other, counted here independently.
+  localparam int unsigned CELLS = RINGS * BINS;
+  int unsigned sent_q;  // cells of the current reading already sent
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      sent_q <= 0;
+    end else if (y_valid_o && y_ready_i) begin
+      sent_q <= (sent_q == CELLS - 1) ? 0 : sent_q + 1;
+    end
+  end
+  last_every_reading: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      y_valid_o |-> y_last_o == (sent_q == CELLS - 1))
+    else $error("sectoral_ism_stream: y_last on cell %0d of a reading of %0d", sent_q, CELLS);
+  // Only a four-state simulator can see X here (two-state Verilator cannot).
+  known_after_reset: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      !$isunknown({y_valid_o, re_o, release_o}) && (!y_valid_o || !$isunknown({y_last_o, y_data_o})))
+    else $error("sectoral_ism_stream: unknown output after reset");
+`endif
 endmodule

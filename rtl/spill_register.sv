@@ -18,10 +18,18 @@ module spill_register #(
   logic [WIDTH-1:0] a_data_q, b_data_q;
 
   logic a_fill, a_drain, b_fill, b_drain;
+`ifdef INTGRID_FAULT_SPILL_OVERWRITE  // fault for the checkers' self-test: a stalled beat is overwritten
+  assign a_fill  = valid_i && ready_o && !b_full_q;
+`else
   assign a_fill  = valid_i && ready_o && (!a_full_q || a_drain) && !b_full_q;  // input goes straight to a
+`endif
   assign a_drain = a_full_q && ready_i;                                        // a's beat leaves
   assign b_fill  = valid_i && ready_o && a_full_q && !a_drain;                 // a stalls: input parks in b
+`ifdef INTGRID_FAULT_SPILL_BUBBLE  // fault for the checkers' self-test: b waits a cycle after a drains
+  assign b_drain = b_full_q && !a_full_q;
+`else
   assign b_drain = b_full_q && (!a_full_q || a_drain);                         // b moves up into a
+`endif
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -43,7 +51,35 @@ module spill_register #(
     end
   end
 
+`ifdef INTGRID_FAULT_SPILL_REFUSE  // fault for the checkers' self-test: input refused while a is full
+  assign ready_o = !a_full_q;
+`else
+`ifdef INTGRID_FAULT_SPILL_REFUSE  // fault for the checkers' self-test: input refused while a is full
+  assign ready_o = !a_full_q;
+`else
   assign ready_o = !b_full_q;  // registered: room for one more beat whatever the output does
+`endif
+`endif
   assign valid_o = a_full_q;
   assign data_o  = a_data_q;
+
+`ifndef SYNTHESIS
+  // Checkers, simulation only (Yosys defines SYNTHESIS); Verilator needs --assert. A failure
+  // reports through $error, which stops the simulation.
+  // The output holds while it is stalled (AXI4-Stream).
+  output_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      valid_o && !ready_i |=> valid_o && $stable(data_o))
+    else $error("spill_register: output changed while valid_o && !ready_i");
+  // Entry b only ever waits behind a full entry a, so ready_o is low only with both entries full.
+  entry_order: assert property (@(posedge clk_i) disable iff (!rst_ni) b_full_q |-> a_full_q)
+    else $error("spill_register: entry b full while entry a is empty");
+  // No bubble: a beat taken at an edge, or parked in b, is on the output in the next cycle.
+  no_bubble: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (valid_i && ready_o) || b_full_q |=> valid_o)
+    else $error("spill_register: a held beat is not on the output (bubble)");
+  // Only a four-state simulator can see X here (two-state Verilator cannot).
+  known_after_reset: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      !$isunknown({valid_o, ready_o}) && (!valid_o || !$isunknown(data_o)))
+    else $error("spill_register: unknown output after reset");
+`endif
 endmodule

@@ -6,8 +6,9 @@
 //   the RTL's spill_register: two entries (a faces the output, b catches a beat that arrives while
 //   a is stalled), each {last, data}; y_valid_o, y_data_o and y_last_o are driven from entry a;
 // - the input ready is combinational in the RTL (a_ready_o = b_ready_o = a_valid_i && b_valid_i &&
-//   !b_full_q, the join of the two streams), so a small SC_METHOD computes it from the input valids
-//   and the registered b_full_q, exactly as the RTL's assigns do; it never depends on y_ready_i.
+//   !b_full_q && rst_ni, the join of the two streams), so a small SC_METHOD computes it from the
+//   input valids, the reset and the registered b_full_q, exactly as the RTL's assigns do; it never
+//   depends on y_ready_i.
 // The data path is the HLS function hls::fuse_beat, called when a beat enters the buffer (in the
 // RTL the adders sit between the inputs and the spill register).
 //
@@ -52,7 +53,7 @@ struct IndexFusionModule : ::sc_core::sc_module {
     SC_CTHREAD(run, clk_i.pos());
     reset_signal_is(rst_ni, false);
     SC_METHOD(join);
-    sensitive << a_valid_i << b_valid_i << b_full_q_;
+    sensitive << rst_ni << a_valid_i << b_valid_i << b_full_q_;
   }
 
   // Conversions between the bus and the HLS beat (same packing: bus bit i = word i/64, bit i%64).
@@ -82,9 +83,9 @@ struct IndexFusionModule : ::sc_core::sc_module {
   Data a_data_q_ = 0, b_data_q_ = 0;
   bool a_last_q_ = false, b_last_q_ = false;
 
-  // The join: both halves of the beat present and room in the buffer (rtl: fire).
+  // The join: out of reset, both halves of the beat present and room in the buffer (rtl: fire).
   void join() {
-    const bool fire = a_valid_i.read() && b_valid_i.read() && !b_full_q_.read();
+    const bool fire = rst_ni.read() && a_valid_i.read() && b_valid_i.read() && !b_full_q_.read();
     a_ready_o.write(fire);
     b_ready_o.write(fire);
   }

@@ -183,6 +183,7 @@ struct SectoralIsmModule : sc_core::sc_module {
   void banks() {
     s_ = State{};
     write_outputs();
+    z_ready.write(false);  // low from a reset edge to the next edge (rtl: out_of_reset_q)
     wait();
     while (true) {
       step(y_ready.read());

@@ -6,11 +6,12 @@
 //   index_fusion_rtl_test --report        one JSON line per configuration: cycles per beat and
 //                                         per cell, latency, with back-pressure off and on, and
 //                                         simulation speed (cells per second of host time)
-//   --trace[=DIR] or INTGRID_TB_TRACE=DIR  VCD waveforms, one file per test in DIR (default .),
+//   --trace[=DIR] or INTGRID_WAVES=DIR     FST waveforms, one file per run in DIR (default .),
 //                                         the first INTGRID_TB_TRACE_CYCLES cycles (default 20000)
+// The models are verilated with --assert: a failed RTL assertion fails the run.
 //   INTGRID_TB_SEED=N                      reproduce a run (every test prints its seed)
 #include <verilated.h>
-#include <verilated_vcd_c.h>
+#include <verilated_fst_c.h>
 
 #include <chrono>
 #include <cstdio>
@@ -40,6 +41,7 @@ struct SimOptions {
   bool random_traffic = true;  // random valid gaps and back-pressure, in segments
   TrafficRates rates{};        // when !random_traffic
   std::uint64_t seed = 0;
+  std::uint64_t stop_after_cycles = UINT64_MAX;  // leave the run early (to reset in mid-frame)
 };
 
 struct SimRun {
@@ -47,17 +49,37 @@ struct SimRun {
   double host_seconds = 0.0;
 };
 
-// One Verilated model with its clock, reset and optional VCD trace.
+// The wave file of a model: <suite>.<test> inside a test (.2, .3 ... for its next models),
+// else the run's name.
+inline std::string wave_name(const std::string& run) {
+  static std::string test;
+  static int models = 0;
+  const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
+  if (info == nullptr) return run;
+  const std::string name = std::string(info->test_suite_name()) + "." + info->name();
+  models = name == test ? models + 1 : 1;
+  test = name;
+  return models > 1 ? name + "." + std::to_string(models) : name;
+}
+
+// One Verilated model with its clock, reset and optional FST trace.
 template <class VModel, int B, int LANES>
 class Harness {
  public:
-  explicit Harness(const std::string& name) : top_(nullptr) {
+  // init_seed: negative for an all-zero initial state, else the seed of a random one.
+  explicit Harness(const std::string& name, int init_seed = -1) : top_(nullptr) {
     context_.traceEverOn(g_trace.on);
+    context_.randReset(init_seed < 0 ? 0 : 2);
+    if (init_seed >= 0) context_.randSeed(init_seed);
+    context_.fatalOnError(false);  // a failed assertion fails the run, it does not abort
+    // Verilator's runtime looks models up in the thread's context: with several harnesses
+    // alive, it must be this one's whenever its model is built or destroyed.
+    Verilated::threadContextp(&context_);
     top_ = std::make_unique<VModel>(&context_, "top");
     if (g_trace.on) {
-      vcd_ = std::make_unique<VerilatedVcdC>();
+      vcd_ = std::make_unique<VerilatedFstC>();
       top_->trace(vcd_.get(), 99);
-      const std::string path = g_trace.dir + "/" + name + ".vcd";
+      const std::string path = g_trace.dir + "/" + wave_name(name) + ".fst";
       vcd_->open(path.c_str());
       std::printf("[trace] %s\n", path.c_str());
     }
@@ -66,22 +88,30 @@ class Harness {
   }
   ~Harness() {
     if (vcd_) vcd_->close();
+    Verilated::threadContextp(&context_);
     top_->final();
+    top_.reset();
   }
 
-  // Synchronous reset for `cycles` cycles, inputs idle.
-  void reset(int cycles) {
+  // Synchronous reset for `cycles` cycles, inputs idle unless `offer` (both valids high).
+  // Returns the cycles of the reset in which a_ready or b_ready was high (the RTL promises none).
+  int reset(int cycles, bool offer = false) {
+    int ready = 0;
     top_->rst_ni = 0;
-    top_->a_valid_i = 0;
-    top_->b_valid_i = 0;
+    top_->a_valid_i = offer;
+    top_->b_valid_i = offer;
     top_->y_ready_i = 0;
     for (int i = 0; i < cycles; ++i) {
       top_->eval();
+      ready += top_->a_ready_o || top_->b_ready_o;
       dump();
       tick();
     }
     top_->rst_ni = 1;
+    return ready;
   }
+  VModel& top() { return *top_; }
+  bool assertion_failed() const { return context_.gotError(); }
 
   // Applies the inputs and returns the outputs they settle to (before the next rising edge).
   FusionOutputs apply(const FusionDrive<B, LANES>& d) {
@@ -120,7 +150,7 @@ class Harness {
   }
   VerilatedContext context_;
   std::unique_ptr<VModel> top_;
-  std::unique_ptr<VerilatedVcdC> vcd_;
+  std::unique_ptr<VerilatedFstC> vcd_;
 };
 
 // Runs a stimulus through a model already out of reset; returns the scoreboard's verdict.
@@ -141,6 +171,11 @@ SimRun stream(Harness<VModel, B, LANES>& dut, const std::string& name, const Sim
     const bool moved = board.observe(d, out);
     dut.tick();
     driver.advance(moved);
+    if (dut.assertion_failed()) {
+      board.stuck("an RTL assertion failed (its %Error line is printed above)");
+      break;
+    }
+    if (board.cycle() >= opt.stop_after_cycles) break;
 
     idle = (moved || progress) ? 0 : idle + 1;
     if (idle > 20000) {
@@ -157,8 +192,8 @@ SimRun stream(Harness<VModel, B, LANES>& dut, const std::string& name, const Sim
 
 // A fresh model: reset, then the whole stimulus.
 template <class VModel, int B, int LANES>
-SimRun simulate(const std::string& name, const SimOptions& opt) {
-  Harness<VModel, B, LANES> dut(name);
+SimRun simulate(const std::string& name, const SimOptions& opt, int init_seed = -1) {
+  Harness<VModel, B, LANES> dut(name, init_seed);
   dut.reset(3);
   return stream(dut, name, opt);
 }
@@ -261,6 +296,115 @@ TEST(IndexFusionRtl, ResetEmptiesAStalledBuffer) {
   EXPECT_EQ(r.beats_out, opt.random_beats);
 }
 
+// Ready is low in every cycle of a reset, both valids high, from power-up (before the first
+// edge) and in mid-frame; right after it a beat is taken at once.
+TEST(IndexFusionRtl, ReadyIsLowInReset) {
+  Harness<Vindex_fusion_b8_l8, 8, 8> dut("index_fusion_rtl_ready_in_reset", 7);
+  EXPECT_EQ(dut.reset(3, true), 0);
+  FusionDrive<8, 8> d;
+  d.a_valid = d.b_valid = d.y_ready = true;
+  EXPECT_TRUE(dut.apply(d).a_ready);
+  dut.tick();
+  EXPECT_EQ(dut.reset(2, true), 0);
+  EXPECT_TRUE(dut.apply(d).a_ready);
+  EXPECT_FALSE(dut.assertion_failed());
+}
+
+// Resets in mid-frame under random traffic (one reset cycle), each followed by the whole stimulus:
+// the same verdict, cycles and latencies as a model fresh from power-up; and random initial states
+// (--x-initial unique, four seeds) reset to the same behaviour.
+TEST(IndexFusionRtl, ResetInMidFrameRestartsAsFromPowerUp) {
+  const std::string name = "index_fusion_rtl_mid_frame_reset";
+  SimOptions opt;
+  opt.random_beats = 6000;
+  opt.seed = test_seed(name);
+  const FusionResult want = simulate<Vindex_fusion_b8_l8, 8, 8>(name, opt).result;
+  ASSERT_TRUE(want.ok()) << want.summary();
+  const auto same = [&](const FusionResult& got, const std::string& what) {
+    EXPECT_TRUE(got.ok()) << what << ": " << got.summary();
+    EXPECT_EQ(got.cycles, want.cycles) << what;
+    EXPECT_EQ(got.first_out_cycle, want.first_out_cycle) << what;
+    EXPECT_EQ(got.ready_cycles, want.ready_cycles) << what;
+    EXPECT_EQ(got.latency.sum, want.latency.sum) << what;
+    EXPECT_EQ(got.latency.max, want.latency.max) << what;
+  };
+  for (const std::uint64_t stop : {want.cycles / 7, want.cycles / 3, want.cycles * 5 / 6}) {
+    Harness<Vindex_fusion_b8_l8, 8, 8> dut(name);
+    dut.reset(3);
+    SimOptions part = opt;
+    part.stop_after_cycles = stop;
+    stream(dut, name, part);
+    EXPECT_EQ(dut.reset(1, true), 0);
+    same(stream(dut, name, opt).result, "reset at cycle " + std::to_string(stop));
+  }
+  for (const int init : {1, 2, 3, 4})
+    same(simulate<Vindex_fusion_b8_l8, 8, 8>(name, opt, init).result,
+         "initial state " + std::to_string(init));
+}
+
+// The sources' rule is checked by the RTL: a changing a beat it offers before the join takes it
+// (b not yet valid) fails an assertion.
+TEST(IndexFusionRtlAssertions, SourceChangingAnOfferedBeatFails) {
+  Harness<Vindex_fusion_b8_l8, 8, 8> dut("index_fusion_rtl_source_rule");
+  dut.reset(3);
+  FusionDrive<8, 8> d;
+  d.a_valid = true;
+  d.a_data.w[0] = 1;
+  EXPECT_FALSE(dut.apply(d).a_ready);
+  testing::internal::CaptureStdout();
+  dut.tick();
+  d.a_data.w[0] = 2;
+  dut.apply(d);
+  dut.tick();
+  const std::string log = testing::internal::GetCapturedStdout();
+  EXPECT_TRUE(dut.assertion_failed());
+  EXPECT_NE(log.find("a_source_holds"), std::string::npos) << log;
+}
+
+TEST(IndexFusionRtlAssertions, SourceBChangingAnOfferedBeatFails) {
+  Harness<Vindex_fusion_b8_l8, 8, 8> dut("index_fusion_rtl_source_rule_b");
+  dut.reset(3);
+  FusionDrive<8, 8> d;
+  d.b_valid = true;
+  d.b_last = false;
+  EXPECT_FALSE(dut.apply(d).b_ready);
+  testing::internal::CaptureStdout();
+  dut.tick();
+  d.b_last = true;
+  dut.apply(d);
+  dut.tick();
+  const std::string log = testing::internal::GetCapturedStdout();
+  EXPECT_TRUE(dut.assertion_failed());
+  EXPECT_NE(log.find("b_source_holds"), std::string::npos) << log;
+}
+
+// The RTL built with INTGRID_FAULT_READY_IN_RESET and INTGRID_FAULT_SPILL_REFUSE: ready during
+// reset, and a beat refused while entry b is free, each fire their assertion.
+TEST(IndexFusionRtlAssertions, ReadyInResetFiresReadyLowInReset) {
+  Harness<Vindex_fusion_fault_protocol_b4_l1, 4, 1> dut("index_fusion_rtl_fault_ready");
+  testing::internal::CaptureStdout();
+  const int ready = dut.reset(3, true);
+  const std::string log = testing::internal::GetCapturedStdout();
+  EXPECT_GT(ready, 0);
+  EXPECT_TRUE(dut.assertion_failed());
+  EXPECT_NE(log.find("ready_low_in_reset"), std::string::npos) << log;
+}
+TEST(IndexFusionRtlAssertions, RefusingSpillRegisterFiresJoinTakesBeat) {
+  Harness<Vindex_fusion_fault_protocol_b4_l1, 4, 1> dut("index_fusion_rtl_fault_refuse");
+  dut.reset(3);  // valids low: the fault in reset has nothing to accept
+  ASSERT_FALSE(dut.assertion_failed());
+  FusionDrive<4, 1> d;
+  d.a_valid = d.b_valid = true;
+  testing::internal::CaptureStdout();
+  EXPECT_TRUE(dut.apply(d).a_ready);  // empty: taken into entry a
+  dut.tick();
+  EXPECT_FALSE(dut.apply(d).a_ready);  // entry b is free, yet refused
+  dut.tick();
+  const std::string log = testing::internal::GetCapturedStdout();
+  EXPECT_TRUE(dut.assertion_failed());
+  EXPECT_NE(log.find("join_takes_beat"), std::string::npos) << log;
+}
+
 // The checker's self-test: the RTL built with INTGRID_FAULT_SATURATION lets a sum of exactly
 // -2^(B-1) through unsaturated. Over the exhaustive run every lane meets each of the 129 pairs
 // with a + b = -128 once, so the scoreboard must report exactly 129 * LANES mismatching cells,
@@ -321,11 +465,20 @@ void report(const char* model) {
   std::fflush(stdout);
 }
 
+// A failing test says how to see its waves (one test, its own FST files).
+class WavesHint : public testing::EmptyTestEventListener {
+  void OnTestEnd(const testing::TestInfo& info) override {
+    if (info.result()->Failed() && !g_trace.on)
+      std::printf("[waves] INTGRID_WAVES=<dir> index_fusion_rtl_test --gtest_filter=%s.%s\n",
+                  info.test_suite_name(), info.name());
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
   bool want_report = false;
-  if (const char* env = std::getenv("INTGRID_TB_TRACE"); env != nullptr && *env != '\0') {
+  if (const char* env = std::getenv("INTGRID_WAVES"); env != nullptr && *env != '\0') {
     g_trace.on = true;
     if (std::strcmp(env, "1") != 0) g_trace.dir = env;
   }
@@ -353,5 +506,6 @@ int main(int argc, char** argv) {
     return 0;
   }
   testing::InitGoogleTest(&argc, argv);
+  testing::UnitTest::GetInstance()->listeners().Append(new WavesHint);
   return RUN_ALL_TESTS();
 }

@@ -33,6 +33,8 @@ set(_ism_configs cone16 cone12)
 set(_ism_roms quad_coef log_norm log_weight log_add thresholds threshold_bucket)
 # Verilator's generated C++ is not ours to clean up for the project's warning flags.
 set(_ism_quiet OPT_FAST -w OPT_SLOW -w OPT_GLOBAL -w)
+# The RTL's assertions on, and X (explicit and initial) replaced by values the bench can randomize.
+set(_ism_check --assert --x-assign unique --x-initial unique)
 
 add_test(NAME rtl_manifest_sectoral_ism
          COMMAND ${CMAKE_COMMAND} -DRTL_DIR=${_ism_rtl_dir} -DKERNEL=sectoral_ism
@@ -168,20 +170,42 @@ target_compile_definitions(hls_width_test PRIVATE INTGRID_HLS_WIDTH_CHECK)
 add_dependencies(hls_width_test sectoral_ism_tables)
 gtest_discover_tests(hls_width_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
 
-# --- The Verilated models: one per configuration, and the broken variant -----------------------
+# --- The Verilated models: one per configuration, and the broken variants ----------------------
+# cone16_bug: Phi read one entry off; cone16_bubble: the output stream's stage 1 waits for the
+# spill register when empty (INTGRID_FAULT_STREAM_BUBBLE, a bubble at the start of a bank);
+# cone12_ready: z_ready not held low in reset (INTGRID_FAULT_READY_IN_RESET).
 add_library(sectoral_ism_vmodels STATIC)
 add_dependencies(sectoral_ism_vmodels sectoral_ism_tables)
 set(_ism_vdirs "")
-foreach(_variant cone16 cone12 cone16_bug)
-  string(REPLACE "_bug" "" _cfg ${_variant})
+foreach(_variant cone16 cone12 cone16_bug cone16_bubble cone12_ready)
+  string(REGEX REPLACE "_.*" "" _cfg ${_variant})
   set(_args ${_ism_vargs_${_cfg}})
   if(_variant MATCHES "_bug$")
     list(APPEND _args -DSECTORAL_ISM_BUG_PHI)
+  elseif(_variant MATCHES "_bubble$")
+    list(APPEND _args -DINTGRID_FAULT_STREAM_BUBBLE)
+  elseif(_variant MATCHES "_ready$")
+    list(APPEND _args -DINTGRID_FAULT_READY_IN_RESET)
   endif()
   set(_vdir ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/${_variant})
   verilate(sectoral_ism_vmodels SOURCES ${_ism_rtl} TOP_MODULE sectoral_ism
-           PREFIX Vsectoral_ism_${_variant} DIRECTORY ${_vdir} TRACE
-           VERILATOR_ARGS ${_args} ${_ism_quiet})
+           PREFIX Vsectoral_ism_${_variant} DIRECTORY ${_vdir} TRACE_FST
+           VERILATOR_ARGS ${_args} ${_ism_check} ${_ism_quiet})
+  list(APPEND _ism_vdirs ${_vdir})
+endforeach()
+# The output stream alone (3 rings of 4 bins, 2 sectors), intact and with the faults that show
+# its checkers live: the stream's own bubble and last flag, the spill register's overwrite and bubble.
+foreach(_fault none STREAM_BUBBLE STREAM_LAST SPILL_OVERWRITE SPILL_BUBBLE)
+  string(TOLOWER ${_fault} _name)
+  set(_args -GRINGS=3 -GBINS=4 -GSECTORS=2 -GIDX_W=8)
+  if(NOT _fault STREQUAL none)
+    list(APPEND _args -DINTGRID_FAULT_${_fault})
+  endif()
+  set(_vdir ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/stream_${_name})
+  verilate(sectoral_ism_vmodels SOURCES ${_ism_rtl_dir}/sectoral_ism_stream.sv
+           ${_ism_rtl_dir}/spill_register.sv TOP_MODULE sectoral_ism_stream
+           PREFIX Vsectoral_ism_stream_${_name} DIRECTORY ${_vdir} TRACE_FST
+           VERILATOR_ARGS ${_args} ${_ism_check} ${_ism_quiet})
   list(APPEND _ism_vdirs ${_vdir})
 endforeach()
 # Users of the models: Verilator's headers as system headers (the project's -Wconversion is not
@@ -191,7 +215,7 @@ function(_ism_use_vmodels target)
   target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
   target_include_directories(${target} SYSTEM PRIVATE ${VERILATOR_ROOT}/include
                                                       ${VERILATOR_ROOT}/include/vltstd ${_ism_vdirs})
-  target_compile_definitions(${target} PRIVATE VM_TRACE=1 VM_TRACE_VCD=1)
+  target_compile_definitions(${target} PRIVATE VM_TRACE=1 VM_TRACE_FST=1)
 endfunction()
 
 add_executable(sectoral_ism_rtl_test sectoral_ism_rtl_test.cpp)
@@ -221,7 +245,7 @@ foreach(_variant cone16 cone12 cone16_bug)
   verilate(sectoral_ism_sc_vmodels SYSTEMC
            SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/sectoral_ism_cosim.vlt ${_ism_rtl}
            TOP_MODULE sectoral_ism PREFIX Vsectoral_ism_sc_${_variant} DIRECTORY ${_vdir}
-           VERILATOR_ARGS ${_args} ${_ism_quiet})
+           VERILATOR_ARGS ${_args} ${_ism_check} ${_ism_quiet})
   list(APPEND _ism_sc_vdirs ${_vdir})
 endforeach()
 # The co-simulation, and a build of it whose SystemC model has a one-cycle schedule fault.
