@@ -304,12 +304,41 @@ def run_logged(cmd: list[str], log: Path, timeout: float | None, cwd: Path | Non
     return code, time.monotonic() - start
 
 
+def test_programs(args: argparse.Namespace, build: Path) -> dict[str, Path]:
+    """The program each selected test runs (its command's first word), by test name."""
+    cmd = ["ctest", "--test-dir", str(build), "--show-only=json-v1", "-L", args.labels]
+    if args.exclude:
+        cmd += ["-E", args.exclude]
+    tests = json.loads(run(cmd).stdout)["tests"]
+    return {t["name"]: Path((t.get("command") or [""])[0]) for t in tests}
+
+
+def built_programs(programs: dict[str, Path], build: Path) -> dict[Path, int]:
+    """Modification times of the test programs that the build directory produces."""
+    stamps = {}
+    for path in set(programs.values()):
+        if path.is_relative_to(build) and path.exists():
+            stamps[path] = path.stat().st_mtime_ns
+    return stamps
+
+
+def affected_tests(programs: dict[str, Path], before: dict[Path, int], build: Path
+                   ) -> list[str]:
+    """The tests a mutant can change: those whose program was rebuilt, and every test that runs
+    an outside tool (Verilator, Yosys, ...), which may read the mutated source itself."""
+    after = built_programs(programs, build)
+    return sorted(name for name, path in programs.items()
+                  if path not in before or after.get(path) != before[path])
+
+
 def run_tests(args: argparse.Namespace, build: Path, log: Path, timeout: float,
-              stop_on_failure: bool) -> TestRun:
+              stop_on_failure: bool, only: list[str] | None = None) -> TestRun:
     cmd = ["ctest", "--test-dir", str(build), "-L", args.labels, "-j", str(args.jobs),
            "--timeout", str(int(timeout)), "--no-tests=error"]
     if args.exclude:
         cmd += ["-E", args.exclude]
+    if only is not None:
+        cmd += ["-R", "^(" + "|".join(re.escape(n) for n in only) + ")$"]
     if stop_on_failure:
         cmd.append("--stop-on-failure")
     code, seconds = run_logged(cmd, log, timeout)
@@ -378,7 +407,9 @@ def write_report(path: Path, results: list[dict], meta: dict, catalogue_size: in
         f"mutant of `{meta['catalogue']}` applied alone to a copy of the tree, the hardware test "
         f"targets rebuilt, then `ctest -L \"{meta['labels']}\"`"
         + (f", leaving out the tests that match `{meta['exclude']}`" if meta["exclude"] else "")
-        + ".",
+        + (" (`--affected-only`: per mutant only the tests whose program was rebuilt, and those "
+           "that run Verilator, Yosys or another outside tool)" if meta.get("affected_only")
+           else "") + ".",
         "",
         f"- Source: `{meta['commit']}`{' with local changes' if meta['dirty'] else ''}; run "
         f"{meta['started']} on {meta['host']} (`--jobs {meta['jobs']}`, build `-j "
@@ -514,6 +545,10 @@ def campaign(args: argparse.Namespace, mutants: list[Mutant], catalogue_size: in
     if timeout is None:
         timeout = 1800.0
 
+    # --affected-only: a test whose program was not rebuilt and that reads no source file
+    # cannot see the mutant (only outside tools such as Verilator and Yosys read sources).
+    programs = test_programs(args, build) if args.affected_only else {}
+    meta["affected_only"] = args.affected_only
     results: list[dict] = []
     results_file = work / "results.json"
     for i, m in enumerate(mutants, 1):
@@ -526,14 +561,20 @@ def campaign(args: argparse.Namespace, mutants: list[Mutant], catalogue_size: in
                   "killer": None, "killer_status": None, "detail": ""}
         try:
             path.write_text(original.replace(m.find, m.replace, 1), encoding="utf-8")
+            before = built_programs(programs, build) if programs else {}
             ok, build_s = build_targets(args, build, targets, logs / f"{m.id}.build.log")
             record["build_seconds"] = round(build_s, 1)
+            only = affected_tests(programs, before, build) if programs else None
             if not ok:
                 record["result"] = "build-broken"
                 record["detail"] = first_error(logs / f"{m.id}.build.log")
+            elif only == []:
+                record["result"] = "survived"
+                record["detail"] = "no test program was rebuilt and no test reads sources"
             else:
                 t = run_tests(args, build, logs / f"{m.id}.test.log", timeout,
-                              stop_on_failure=True)
+                              stop_on_failure=True, only=only)
+                record["tests_run"] = len(t.passed) + (t.first_failure is not None)
                 record["test_seconds"] = round(t.seconds, 1)
                 record["killer"], record["killer_status"] = t.first_failure, t.first_failure_status
                 record["result"] = {"passed": "survived", "failed": "killed",
@@ -588,6 +629,10 @@ def main() -> int:
                     help="ctest -L regular expression (default: %(default)s)")
     ap.add_argument("--exclude", default=DEFAULT_EXCLUDE,
                     help="ctest -E regular expression (default: %(default)s)")
+    ap.add_argument("--affected-only", action="store_true",
+                    help="per mutant, run only the tests whose program was rebuilt and those "
+                         "that run an outside tool (lint, synthesis, formal): the others cannot "
+                         "see the mutant")
     ap.add_argument("--no-baseline", action="store_true",
                     help="skip building and testing the unmutated tree first")
     ap.add_argument("--nice", type=int, default=10, help="niceness of builds and tests "
