@@ -368,6 +368,20 @@ def build_targets(args: argparse.Namespace, build: Path, targets: list[str], log
     return code == 0, seconds
 
 
+def compile_time_check(log: Path, src: Path) -> str | None:
+    """The first failed static_assert of a test when every compiler error is one in
+    testbench/: the mutant compiled in its own layer and a compile-time test rejected it."""
+    errors = re.findall(r"^(\S+?):(\d+):\d+: error: (.*)$", log.read_text(errors="replace"),
+                        re.MULTILINE)
+    if not errors or any(not msg.startswith("static assertion failed") for _, _, msg in errors):
+        return None
+    files = [Path(f) for f, _, _ in errors]
+    tests = src / "testbench"
+    if not all(f.is_relative_to(tests) for f in files):
+        return None
+    return f"static_assert {files[0].relative_to(src)}:{errors[0][1]}"
+
+
 def first_error(log: Path) -> str:
     """The compiler's or Verilator's first error line, else the first failed build step."""
     lines = log.read_text(errors="replace").splitlines()
@@ -565,9 +579,14 @@ def campaign(args: argparse.Namespace, mutants: list[Mutant], catalogue_size: in
             ok, build_s = build_targets(args, build, targets, logs / f"{m.id}.build.log")
             record["build_seconds"] = round(build_s, 1)
             only = affected_tests(programs, before, build) if programs else None
-            if not ok:
+            check = None if ok else compile_time_check(logs / f"{m.id}.build.log", src)
+            if check:
+                record["result"], record["killer"] = "killed", check
+                record["killer_status"] = "compile time"
+            elif not ok:
                 record["result"] = "build-broken"
-                record["detail"] = first_error(logs / f"{m.id}.build.log")
+                record["detail"] = first_error(logs / f"{m.id}.build.log").replace(
+                    f"{src}/", "")
             elif only == []:
                 record["result"] = "survived"
                 record["detail"] = "no test program was rebuilt and no test reads sources"
