@@ -202,7 +202,7 @@ foreach(_fault none STREAM_BUBBLE STREAM_LAST SPILL_OVERWRITE SPILL_BUBBLE)
     list(APPEND _args -DINTGRID_FAULT_${_fault})
   endif()
   set(_vdir ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/stream_${_name})
-  verilate(sectoral_ism_vmodels SOURCES ${_ism_rtl_dir}/sectoral_ism_stream.sv
+  verilate(sectoral_ism_vmodels SOURCES ${_ism_rtl_dir}/sectoral_ism_pkg.sv ${_ism_rtl_dir}/sectoral_ism_stream.sv
            ${_ism_rtl_dir}/spill_register.sv TOP_MODULE sectoral_ism_stream
            PREFIX Vsectoral_ism_stream_${_name} DIRECTORY ${_vdir} TRACE_FST
            VERILATOR_ARGS ${_args} ${_ism_check} ${_ism_quiet})
