@@ -6,10 +6,10 @@
 //   banks    one SC_CTHREAD: the two-bank index RAM, its full flags and window registers,
 //            and the streamer (rtl/sectoral_ism_stream.sv: ring-major read, stage 1 with the
 //            constants of the rings outside the window, spill register)
-//   accept   one SC_METHOD: z_ready = the engine is idle and its next bank is free (low in
-//            reset), and the engine's start, as the RTL's assigns
+//   accept   one SC_METHOD: z_ready = out of reset, the engine is idle and its next bank is
+//            free, and the engine's start, as the RTL's assigns
 // The threads reset while rst_n is low (synchronous, like the RTL); every output is a
-// register or a function of registers (z_ready also of rst_n).
+// register or a function of registers.
 //
 //   z_valid/z_ready/z_data/z_last  one reading per beat (z_data: reading_bits wide; z_last
 //                                  ignored)
@@ -70,7 +70,7 @@ struct SectoralIsmModule : sc_core::sc_module {
     SC_CTHREAD(banks, clk.pos());
     reset_signal_is(rst_n, false);
     SC_METHOD(accept);
-    sensitive << rst_n << z_valid << idle_ << bank_free_;
+    sensitive << out_of_reset_ << z_valid << idle_ << bank_free_;
   }
 
  private:
@@ -81,9 +81,11 @@ struct SectoralIsmModule : sc_core::sc_module {
   sc_core::sc_signal<std::uint32_t> idx_waddr_{"idx_waddr"}, idx_wdata_{"idx_wdata"};
   sc_core::sc_signal<bool> bank_free_{"bank_free"};  // !full[wb]
   sc_core::sc_signal<bool> wb_{"wb"};
+  // Low from a reset edge to the first edge out of reset (rtl: out_of_reset_q).
+  sc_core::sc_signal<bool> out_of_reset_{"out_of_reset"};
 
   void accept() {
-    const bool ready = rst_n.read() && idle_.read() && bank_free_.read();
+    const bool ready = out_of_reset_.read() && idle_.read() && bank_free_.read();
     z_ready.write(ready);
     start_.write(z_valid.read() && ready);
   }
@@ -183,8 +185,9 @@ struct SectoralIsmModule : sc_core::sc_module {
   void banks() {
     s_ = State{};
     write_outputs();
-    z_ready.write(false);  // low from a reset edge to the next edge (rtl: out_of_reset_q)
+    out_of_reset_.write(false);
     wait();
+    out_of_reset_.write(true);
     while (true) {
       step(y_ready.read());
       write_outputs();

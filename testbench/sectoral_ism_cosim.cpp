@@ -8,7 +8,8 @@
 //   - the index RAM write port: we, and while we the address {bank, ring, sector} and the
 //     data (the RTL's signals are public through testbench/sectoral_ism_cosim.vlt);
 //   - the RTL's index writes against golden: each written index equals golden's index of that
-//     (ring, sector) for the reading in set-up.
+//     (ring, sector) for the reading in set-up;
+//   - once, the widths the RTL top derives against golden's (also public through the .vlt).
 // In reset the model's z_ready must be low (the RTL's is compared only out of reset).
 // The first differing cycle and signal are reported. Each model's output stream is also
 // checked against golden's ism_kernel_indices by its own scoreboard (order, last flags, no
@@ -32,16 +33,21 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <systemc>
 
 #include "Vsectoral_ism_sc_cone12.h"
 #include "Vsectoral_ism_sc_cone12___024root.h"
+#include "Vsectoral_ism_sc_cone12_sectoral_ism.h"
 #include "Vsectoral_ism_sc_cone16.h"
 #include "Vsectoral_ism_sc_cone16___024root.h"
 #include "Vsectoral_ism_sc_cone16_bug.h"
 #include "Vsectoral_ism_sc_cone16_bug___024root.h"
+#include "Vsectoral_ism_sc_cone16_bug_sectoral_ism.h"
+#include "Vsectoral_ism_sc_cone16_sectoral_ism.h"
 #include "intgrid/kernel/hardware_configs.hpp"
 #include "intgrid/kernel/ism_kernel.hpp"
 #include "sectoral_ism_cone12_config.hpp"
@@ -198,10 +204,30 @@ struct CosimPair : sc_core::sc_module, Cosim {
   // The RTL's index RAM write port: {wb_q, idx_waddr} as i_index_ram sees it.
   Write rtl_write() {
     const auto* r = rtl.rootp;
-    return {r->sectoral_ism__DOT__idx_we != 0,
-            (std::uint32_t(r->sectoral_ism__DOT__wb_q) << kBankBits) |
-                std::uint32_t(r->sectoral_ism__DOT__idx_waddr),
-            std::uint32_t(r->sectoral_ism__DOT__idx_wdata)};
+    const auto* top = r->sectoral_ism;
+    return {top->idx_we != 0,
+            (std::uint32_t(top->wb_q) << kBankBits) | std::uint32_t(top->idx_waddr),
+            std::uint32_t(top->idx_wdata)};
+  }
+
+  // The widths the RTL top derives (rtl/sectoral_ism_pkg.sv) against golden's derivation of the
+  // same configuration, which the sub-modules' unit tests are Verilated with: "" when all agree.
+  static std::string width_mismatches() {
+    using Top = std::remove_pointer_t<decltype(std::declval<VModel>().rootp->sectoral_ism)>;
+    const std::pair<const char*, std::pair<long, long>> widths[] = {
+        {"MAX_INDEX", {Top::MAX_INDEX, Config::max_index}},
+        {"E_W", {Top::E_W, Config::e_bits}},
+        {"SQ_W", {Top::SQ_W, Config::sq_bits}},
+        {"MUL_B_W", {Top::MUL_B_W, Config::mul_b_bits}},
+        {"MUL_DIGIT_W", {Top::MUL_DIGIT_W, Config::mul_digit_bits}},
+        {"PHI_AW", {Top::PHI_AW, Config::phi_addr_bits}},
+        {"BUCKET_W", {Top::BUCKET_W, Config::bucket_bits}}};
+    std::string out;
+    for (const auto& [name, values] : widths)
+      if (values.first != values.second)
+        out += std::string(out.empty() ? "" : ", ") + name + " rtl " +
+               std::to_string(values.first) + ", golden " + std::to_string(values.second);
+    return out;
   }
 
   void mismatch(const char* signal, std::uint32_t rtl_value, std::uint32_t model_value) {
@@ -328,8 +354,9 @@ struct CosimPair : sc_core::sc_module, Cosim {
   }
 
   bool clean() const {
-    return cycle_mismatches == 0 && rtl_write_errors == 0 && rtl_board.errors == 0 &&
-           model_board.errors == 0 && rtl_board.readings + rtl_board.lost == readings.size() &&
+    return width_mismatches().empty() && cycle_mismatches == 0 && rtl_write_errors == 0 &&
+           rtl_board.errors == 0 && model_board.errors == 0 &&
+           rtl_board.readings + rtl_board.lost == readings.size() &&
            model_board.readings + model_board.lost == readings.size();
   }
   // The fault is caught, first by the check that must see it first, at the cycle it shows.
@@ -353,6 +380,8 @@ struct CosimPair : sc_core::sc_module, Cosim {
         static_cast<unsigned long long>(cycle_mismatches),
         static_cast<unsigned long long>(rtl_write_errors), rtl_board.errors, model_board.errors,
         seconds, double(cycle) / seconds, ok() ? "true" : "false");
+    if (const std::string widths = width_mismatches(); !widths.empty())
+      std::printf("  derived widths unlike golden's: %s\n", widths.c_str());
     if (!first_mismatch.empty())
       std::printf("  first rtl/model mismatch: %s\n", first_mismatch.c_str());
     if (!first_write_error.empty())

@@ -6,11 +6,17 @@
 #   IsmUnitsFault.*     the same checks on sub-modules with one injected fault each: they must fail
 # Included after sectoral_ism.cmake, whose tables it uses.
 
-# --- The configurations' tables: repoint these two definitions when the tables move ------------
+# --- The configurations' files ------------------------------------------------------------------
 # _units_table(<cfg> <suffix> <var>): the file sectoral_ism_<cfg><suffix> of a configuration:
-# .vc (the top's parameters), _<rom>.mem (its ROMs), _config.hpp; _units_tables_target writes them.
+# .vc (the top's parameters) and _<rom>.mem (its ROMs), committed in rtl/config/<cfg>; and
+# _config.hpp (golden's configuration header, with the derived widths), which
+# _units_tables_target writes in the build tree.
 function(_units_table cfg suffix out_var)
-  set(${out_var} ${_ism_gen}/sectoral_ism_${cfg}${suffix} PARENT_SCOPE)
+  if(suffix STREQUAL "_config.hpp")
+    set(${out_var} ${_ism_gen}/sectoral_ism_${cfg}${suffix} PARENT_SCOPE)
+  else()
+    set(${out_var} ${_ism_rtl_dir}/config/${cfg}/sectoral_ism_${cfg}${suffix} PARENT_SCOPE)
+  endif()
 endfunction()
 set(_units_tables_target sectoral_ism_tables)
 
@@ -22,12 +28,14 @@ set(_units_rtl_log_add sectoral_ism_log_add.sv sectoral_ism_rom.sv)
 set(_units_rtl_index sectoral_ism_index.sv sectoral_ism_rom.sv)
 set(_units_rtl_density sectoral_ism_density.sv sectoral_ism_mul.sv sectoral_ism_rom.sv)
 set(_units_rtl_mul sectoral_ism_mul.sv)
-# Each sub-module's numeric parameters from the top's: NAME, or NAME=TOP_NAME where they differ.
-set(_units_params_log_add LOG_W PHI_N PHI_W PHI_AW)
-set(_units_params_index LOG_W MAX_INDEX IDX_W THR_W BUCKET_SHIFT BUCKET_N BUCKET_W)
-set(_units_params_density RINGS CLASSES READING_FRAC QUAD_SHIFT LOG_W E_W SQ_W COEF_W MUL_B_W
-    MUL_DIGIT_W NORM_W)
-set(_units_params_mul A_W=SQ_W B_W=MUL_B_W K=MUL_DIGIT_W)
+# Each sub-module's numeric parameters: the top's NAME, or NAME=TOP_NAME where they differ, or
+# NAME=hpp.field for a width the top derives (a localparam), from golden's configuration header.
+set(_units_params_log_add LOG_W PHI_N PHI_W PHI_AW=hpp.phi_addr_bits)
+set(_units_params_index LOG_W MAX_INDEX=hpp.max_index IDX_W THR_W BUCKET_SHIFT BUCKET_N
+    BUCKET_W=hpp.bucket_bits)
+set(_units_params_density RINGS CLASSES READING_FRAC QUAD_SHIFT LOG_W E_W=hpp.e_bits
+    SQ_W=hpp.sq_bits COEF_W MUL_B_W=hpp.mul_b_bits MUL_DIGIT_W=hpp.mul_digit_bits NORM_W)
+set(_units_params_mul A_W=hpp.sq_bits B_W=hpp.mul_b_bits K=hpp.mul_digit_bits)
 # Its ROM file parameters, PARAM=rom: on the command line, not in the generated parameter file,
 # so that the configure-time Verilator run already sees them (and lists the files the build
 # compiles).
@@ -74,23 +82,21 @@ function(_units_verilate prefix top)
            DIRECTORY ${_units_dir}/${prefix} VERILATOR_ARGS ${_u_ARGS} ${_ism_quiet})
 endfunction()
 
-# A sub-module's parameter file per configuration, from the top's: at configure time if the
-# top's is there, else at build time. verilate() runs once at configure time; before any table
-# exists it sees an empty file (the sub-module's defaults), and runs again when the build
-# writes the real one.
+# A sub-module's parameter file per configuration, written at build time (golden's header is a
+# build product). verilate() runs once at configure time on an empty file (the sub-module's
+# defaults: the file list is the same), and again when the build writes the real one.
 function(_units_params unit cfg)
   set(_vc ${_units_dir}/${unit}_${cfg}.vc)
   _units_table(${cfg} .vc _top_vc)
+  _units_table(${cfg} _config.hpp _header)
   string(JOIN "," _params ${_units_params_${unit}})
-  set(_write ${CMAKE_COMMAND} -DVC=${_top_vc} -DOUT=${_vc} -DPARAMS=${_params}
-             -P ${CMAKE_CURRENT_SOURCE_DIR}/ism_unit_params.cmake)
+  set(_write ${CMAKE_COMMAND} -DVC=${_top_vc} -DHEADER=${_header} -DOUT=${_vc}
+             -DPARAMS=${_params} -P ${CMAKE_CURRENT_SOURCE_DIR}/ism_unit_params.cmake)
   add_custom_command(OUTPUT ${_vc} COMMAND ${_write}
-                     DEPENDS ${_top_vc} ${CMAKE_CURRENT_SOURCE_DIR}/ism_unit_params.cmake
+                     DEPENDS ${_top_vc} ${_header}
+                             ${CMAKE_CURRENT_SOURCE_DIR}/ism_unit_params.cmake
                      COMMENT "Parameters of sectoral_ism_${unit} for ${cfg}" VERBATIM)
-  file(STRINGS ${_top_vc} _top_params REGEX "^-G")
-  if(_top_params)
-    execute_process(COMMAND ${_write} COMMAND_ERROR_IS_FATAL ANY)
-  elseif(NOT EXISTS ${_vc})
+  if(NOT EXISTS ${_vc})
     file(WRITE ${_vc} "// replaced at build time from ${_top_vc}\n")
   endif()
 endfunction()

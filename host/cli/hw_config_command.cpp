@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -152,7 +153,8 @@ void add_hw_config_command(CLI::App& app) {
       cmd->add_option("--fov", a->fov_degrees, "field of view (degrees) (default 30)")
           ->check(real_range(0.0, 180.0, true, true));
   cmd->add_option("--fov-rad", a->fov_radians, "field of view (radians), instead of --fov")
-      ->check(real_range(0.0, 3.14159265358979, true, true))
+      ->check(real_number("(0, pi)", "in (0, pi)",
+                          [](double v) { return v > 0.0 && v < std::numbers::pi; }))
       ->excludes(fov);
   cmd->add_option("--rings", a->grid.rings, "range rings (R)")
       ->transform(whole_range(1, core::kMaxPolarCells))

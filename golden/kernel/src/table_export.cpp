@@ -193,10 +193,14 @@ std::vector<GeneratedFile> ism_table_files(const IsmHwConfig& cfg,
     << "  static constexpr int e_bits = " << d.e_bits << ";\n"
     << "  static constexpr int sq_bits = " << d.sq_bits << ";\n"
     << "  static constexpr int coef_bits = " << d.coef_bits << ";\n"
+    << "  static constexpr int mul_b_bits = " << d.mul_b_bits << ";\n"
     << "  static constexpr int mul_digit_bits = " << d.mul_digit_bits << ";\n"
     << "  static constexpr int mul_digits = " << d.mul_digits << ";\n"
+    << "  static constexpr int phi_bits = " << d.phi_bits << ";\n"
+    << "  static constexpr int phi_addr_bits = " << d.phi_addr_bits << ";\n"
     << "  static constexpr int bucket_shift = " << d.bucket_shift << ";\n"
-    << "  static constexpr int bucket_count = " << d.bucket_count << ";\n";
+    << "  static constexpr int bucket_count = " << d.bucket_count << ";\n"
+    << "  static constexpr int bucket_bits = " << d.bucket_bits << ";\n";
   h << cpp_array("std::uint32_t", "quad_coef", k.quad_coef);
   h << cpp_array("std::int32_t", "log_norm", k.log_norm);
   h << cpp_array("std::int32_t", "log_weight", k.log_weight);
