@@ -10,6 +10,7 @@ or timeout. The working tree itself is never modified.
   scripts/mutation_test.py --list                 check the catalogue against the tree, print it
   scripts/mutation_test.py --only spill.* ism.z_ready.ignores_bank --report docs/mutation.md
   scripts/mutation_test.py --report docs/mutation.md      the whole campaign
+  scripts/mutation_test.py --resume --report docs/mutation.md   go on with an interrupted one
 
 Python 3 standard library only.
 """
@@ -20,6 +21,7 @@ import argparse
 import dataclasses
 import datetime
 import fnmatch
+import hashlib
 import json
 import os
 import re
@@ -40,6 +42,9 @@ DEFAULT_LABELS = "hw|formal"
 DEFAULT_EXCLUDE = "^mutation_"
 # Where the targets of the hardware tests are defined (CMake source directories).
 TARGET_DIRS = re.compile(r"(^|/)(testbench|[^/]*formal[^/]*)(/|$)")
+# --affected-only builds and tests in stages, cheapest first: the sub-module unit tests, the
+# kernels' RTL tests, then every target.
+DEFAULT_STAGES = (("sectoral_ism_units_test",), ("index_fusion_rtl_test", "sectoral_ism_rtl_test"))
 EXPECTED_KINDS = ("equivalent", "unreachable")
 KEYS = ("file", "find", "replace", "what", "expected")
 
@@ -209,6 +214,19 @@ def sync_tree(source: Path, dest: Path, work: Path) -> int:
     return changed
 
 
+def tree_key(src: Path) -> str:
+    """A digest of every file of the copy that can change a test's outcome (all but docs/ and
+    Markdown files): --resume goes on only on the copy it was started on."""
+    digest = hashlib.sha256()
+    for path in sorted(src.rglob("*")):
+        rel = path.relative_to(src)
+        if (rel == COPY_MARK or rel.parts[0] == "docs" or rel.suffix == ".md"
+                or not path.is_file() or path.is_symlink()):
+            continue
+        digest.update(str(rel).encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()
+
+
 def full_preset(source: Path, name: str = "full") -> tuple[dict[str, str], str | None]:
     """The cache variables (inherits resolved) and generator of a configure preset."""
     presets = {p["name"]: p for p in
@@ -244,6 +262,10 @@ def configure(src: Path, build: Path, log: Path) -> None:
         elif shutil.which("ninja"):
             cmd += ["-G", "Ninja"]
     cmd += [f"-D{k}={v}" for k, v in sorted(cache.items())]
+    # A mutant changes a few of the files Verilator writes, and restoring it writes the same
+    # files again: with ccache (if installed) those compile from its cache.
+    if shutil.which("ccache"):
+        cmd += ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
     with log.open("w") as out:
         r = subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT, text=True)
     if r.returncode != 0:
@@ -329,6 +351,14 @@ def affected_tests(programs: dict[str, Path], before: dict[Path, int], build: Pa
     after = built_programs(programs, build)
     return sorted(name for name, path in programs.items()
                   if path not in before or after.get(path) != before[path])
+
+
+def source_tests(programs: dict[str, Path], build: Path) -> list[str]:
+    """The quick tests that run an outside tool on the sources themselves (lint, formal): their
+    program is not built here, so they see an RTL mutant before anything is rebuilt. Synthesis
+    runs are left to the main run (a minute each, and rarely the first to fail)."""
+    return sorted(name for name, path in programs.items()
+                  if not path.is_relative_to(build) and "synth" not in name)
 
 
 def run_tests(args: argparse.Namespace, build: Path, log: Path, timeout: float,
@@ -422,7 +452,8 @@ def write_report(path: Path, results: list[dict], meta: dict, catalogue_size: in
         f"targets rebuilt, then `ctest -L \"{meta['labels']}\"`"
         + (f", leaving out the tests that match `{meta['exclude']}`" if meta["exclude"] else "")
         + (" (`--affected-only`: per mutant only the tests whose program was rebuilt, and those "
-           "that run Verilator, Yosys or another outside tool)" if meta.get("affected_only")
+           "that run Verilator, Yosys or another outside tool; for an RTL mutant the lint and "
+           "formal ones first, before the rebuild)" if meta.get("affected_only")
            else "") + ".",
         "",
         f"- Source: `{meta['commit']}`{' with local changes' if meta['dirty'] else ''}; run "
@@ -517,6 +548,65 @@ def git_state(source: Path) -> tuple[str, bool]:
         return "unknown", False
 
 
+def record_tests(record: dict, t: TestRun, log_name: str) -> None:
+    """A mutant's result from its test run."""
+    record["tests_run"] = len(t.passed) + (t.first_failure is not None)
+    record["test_seconds"] = round(record.get("test_seconds", 0.0) + t.seconds, 1)
+    record["killer"], record["killer_status"] = t.first_failure, t.first_failure_status
+    record["result"] = {"passed": "survived", "failed": "killed",
+                        "timeout": "timeout", "error": "error"}[t.status]
+    if t.status == "error":
+        record["detail"] = f"ctest failed without a failing test, see {log_name}"
+
+
+def run_mutant(args: argparse.Namespace, m: Mutant, build: Path, logs: Path, targets: list[str],
+               programs: dict[str, Path], timeout: float, src: Path, record: dict) -> None:
+    """Rebuilds and tests the tree with mutant m applied; fills in record's result."""
+    # --affected-only, an RTL mutant: the tests that read the sources first, before the
+    # rebuild, which a mutant they kill never needs.
+    early = source_tests(programs, build) if programs and m.file.endswith(".sv") else []
+    if early:
+        t = run_tests(args, build, logs / f"{m.id}.source.log", timeout,
+                      stop_on_failure=True, only=early)
+        if t.status != "passed":
+            record_tests(record, t, f"{m.id}.source.log")
+            return
+    # Stages (--affected-only): the cheap test programs first, then everything; the tests a
+    # stage's rebuild affects run before the next stage builds.
+    stages = ([st for st in args.stage if set(st) <= set(targets)] if programs else []) + [targets]
+    ran = set(early)
+    record["build_seconds"] = 0.0
+    for stage in stages:
+        before = built_programs(programs, build) if programs else {}
+        ok, build_s = build_targets(args, build, stage, logs / f"{m.id}.build.log")
+        record["build_seconds"] = round(record["build_seconds"] + build_s, 1)
+        if not ok:
+            check = compile_time_check(logs / f"{m.id}.build.log", src)
+            if check:
+                record["result"], record["killer"] = "killed", check
+                record["killer_status"] = "compile time"
+            else:
+                record["result"] = "build-broken"
+                record["detail"] = first_error(logs / f"{m.id}.build.log").replace(f"{src}/", "")
+            return
+        only = ([n for n in affected_tests(programs, before, build) if n not in ran]
+                if programs else None)
+        if only == []:
+            continue
+        t = run_tests(args, build, logs / f"{m.id}.test.log", timeout, stop_on_failure=True,
+                      only=only)
+        record_tests(record, t, f"{m.id}.test.log")
+        if t.status != "passed":
+            return
+        ran.update(only or [])
+    if "result" not in record:
+        record["result"] = "survived"
+        record["detail"] = ("no test program was rebuilt" + (
+            "; the tests that read the sources passed" if early else " and no test reads sources"))
+    else:
+        record["tests_run"] = len(ran)
+
+
 def campaign(args: argparse.Namespace, mutants: list[Mutant], catalogue_size: int) -> int:
     source = args.source
     work = args.work_dir if args.work_dir.is_absolute() else source / args.work_dir
@@ -524,8 +614,26 @@ def campaign(args: argparse.Namespace, mutants: list[Mutant], catalogue_size: in
     logs.mkdir(parents=True, exist_ok=True)
     if args.nice:
         os.nice(args.nice)
-    changed = sync_tree(source, src, work)
-    print(f"source copy {src}: {changed} files updated", flush=True)
+    os.environ.setdefault("CCACHE_DIR", str(work / "ccache"))
+    # A SIGTERM unwinds like Ctrl-C, so that the mutated file is restored (--resume needs it).
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
+    results_file = work / "results.json"
+    earlier = (json.loads(results_file.read_text())
+               if args.resume and results_file.is_file() else None)
+    if earlier:
+        # The same campaign goes on: on its copy of the tree as it is (not synced again, so
+        # that edits made since to the working tree do not mix into it), with its catalogue.
+        if earlier["meta"].get("tree_key") != tree_key(src):
+            sys.exit(f"mutation_test: --resume: {src} is no longer the tree of {results_file} "
+                     "(run without --resume for a new campaign)")
+        try:
+            mutants = select(parse_catalogue(src / args.catalogue), args.only)
+        except CatalogueError as e:
+            sys.exit(f"mutation_test: {e}")
+        print(f"resume: the campaign of {earlier['meta']['commit']} on {src}", flush=True)
+    else:
+        changed = sync_tree(source, src, work)
+        print(f"source copy {src}: {changed} files updated", flush=True)
     problems = [p for p in (check_snippet(src, m) for m in mutants) if p]
     if problems:
         sys.exit("mutation_test: the catalogue does not apply:\n" + "\n".join(problems))
@@ -533,14 +641,26 @@ def campaign(args: argparse.Namespace, mutants: list[Mutant], catalogue_size: in
     targets = args.targets or hardware_targets(build)
     print(f"build {build}, targets: {' '.join(targets)}", flush=True)
 
-    commit, dirty = git_state(source)
-    meta = {"catalogue": str(args.catalogue), "labels": args.labels, "exclude": args.exclude,
-            "commit": commit, "dirty": dirty, "jobs": args.jobs, "build_jobs": args.build_jobs,
-            "host": os.uname().nodename,
-            "started": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-            "baseline_seconds": None}
+    if earlier:
+        meta = dict(earlier["meta"], jobs=args.jobs, build_jobs=args.build_jobs)
+        wanted = {m.id for m in mutants}
+        kept = [r for r in earlier["results"] if r["id"] in wanted]
+    else:
+        commit, dirty = git_state(source)
+        meta = {"tree_key": tree_key(src), "catalogue": str(args.catalogue),
+                "labels": args.labels, "exclude": args.exclude, "commit": commit, "dirty": dirty,
+                "jobs": args.jobs, "build_jobs": args.build_jobs, "host": os.uname().nodename,
+                "started": datetime.datetime.now(datetime.timezone.utc).strftime(
+                    "%Y-%m-%d %H:%M UTC"),
+                "baseline_seconds": None}
+        kept = []
     timeout = args.timeout
-    if not args.no_baseline:
+    if earlier and meta.get("baseline_seconds") is not None:
+        print(f"resume: {len(kept)} results kept; the baseline passed in that campaign",
+              flush=True)
+        if timeout is None:
+            timeout = max(120.0, 3.0 * meta["baseline_seconds"])
+    elif not args.no_baseline:
         ok, build_s = build_targets(args, build, targets, logs / "baseline.build.log")
         if not ok:
             sys.exit(f"mutation_test: the unmutated tree does not build: "
@@ -563,9 +683,11 @@ def campaign(args: argparse.Namespace, mutants: list[Mutant], catalogue_size: in
     # cannot see the mutant (only outside tools such as Verilator and Yosys read sources).
     programs = test_programs(args, build) if args.affected_only else {}
     meta["affected_only"] = args.affected_only
-    results: list[dict] = []
-    results_file = work / "results.json"
+    results: list[dict] = list(kept)
+    done = {r["id"] for r in kept}
     for i, m in enumerate(mutants, 1):
+        if m.id in done:
+            continue
         path = src / m.file
         original = path.read_text(encoding="utf-8")
         if occurrences(original, m.find) != 1:
@@ -575,31 +697,7 @@ def campaign(args: argparse.Namespace, mutants: list[Mutant], catalogue_size: in
                   "killer": None, "killer_status": None, "detail": ""}
         try:
             path.write_text(original.replace(m.find, m.replace, 1), encoding="utf-8")
-            before = built_programs(programs, build) if programs else {}
-            ok, build_s = build_targets(args, build, targets, logs / f"{m.id}.build.log")
-            record["build_seconds"] = round(build_s, 1)
-            only = affected_tests(programs, before, build) if programs else None
-            check = None if ok else compile_time_check(logs / f"{m.id}.build.log", src)
-            if check:
-                record["result"], record["killer"] = "killed", check
-                record["killer_status"] = "compile time"
-            elif not ok:
-                record["result"] = "build-broken"
-                record["detail"] = first_error(logs / f"{m.id}.build.log").replace(
-                    f"{src}/", "")
-            elif only == []:
-                record["result"] = "survived"
-                record["detail"] = "no test program was rebuilt and no test reads sources"
-            else:
-                t = run_tests(args, build, logs / f"{m.id}.test.log", timeout,
-                              stop_on_failure=True, only=only)
-                record["tests_run"] = len(t.passed) + (t.first_failure is not None)
-                record["test_seconds"] = round(t.seconds, 1)
-                record["killer"], record["killer_status"] = t.first_failure, t.first_failure_status
-                record["result"] = {"passed": "survived", "failed": "killed",
-                                    "timeout": "timeout", "error": "error"}[t.status]
-                if t.status == "error":
-                    record["detail"] = f"ctest failed without a failing test, see {m.id}.test.log"
+            run_mutant(args, m, build, logs, targets, programs, timeout, src, record)
         finally:
             path.write_text(original, encoding="utf-8")
         record["seconds"] = round(time.monotonic() - start, 1)
@@ -652,11 +750,22 @@ def main() -> int:
                     help="per mutant, run only the tests whose program was rebuilt and those "
                          "that run an outside tool (lint, synthesis, formal): the others cannot "
                          "see the mutant")
+    ap.add_argument("--stage", nargs="+", action="append", metavar="TARGET",
+                    help="with --affected-only: build these targets and run the tests they "
+                         "affect before the next stage (repeatable; the last stage is every "
+                         "target; default: " + "; ".join(" ".join(st) for st in DEFAULT_STAGES)
+                         + ")")
+    ap.add_argument("--resume", action="store_true",
+                    help="keep the results of an earlier campaign in the work directory on the "
+                         "same tree (every file but docs/ and *.md unchanged) and run only the "
+                         "other mutants; the report covers both")
     ap.add_argument("--no-baseline", action="store_true",
                     help="skip building and testing the unmutated tree first")
     ap.add_argument("--nice", type=int, default=10, help="niceness of builds and tests "
                     "(default: %(default)s)")
     args = ap.parse_args()
+    if args.stage is None:
+        args.stage = [list(st) for st in DEFAULT_STAGES]
     args.source = args.source.resolve()
     catalogue = args.catalogue if args.catalogue.is_absolute() else args.source / args.catalogue
     try:
