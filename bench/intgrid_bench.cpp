@@ -212,6 +212,18 @@ const LogFixture& reference_log() {
   return fixture;
 }
 
+// Reading the bundled 225-scan log from disk (items = scans; the file stays in the page cache).
+void BM_ReadLog(benchmark::State& state) {
+  std::size_t scans = 0;
+  for (auto _ : state) {
+    const Log log = read_log(INTGRID_DATA_DIR "/malaga_telecom_loop.log");
+    scans += log.scans.size();
+    benchmark::DoNotOptimize(log.scans.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(scans));
+}
+BENCHMARK(BM_ReadLog)->Unit(benchmark::kMillisecond);
+
 void report_insertion(benchmark::State& state, const InsertionStats& stats) {
   state.SetItemsProcessed(static_cast<std::int64_t>(stats.scans));
   state.counters["cells_per_scan"] =

@@ -28,7 +28,7 @@ intgrid_lint_rtl(index_fusion_lint index_fusion ${_if_rtl_files})
 intgrid_lint_rtl(index_fusion_lint_b4_l1 index_fusion -GB=4 -GLANES=1 ${_if_rtl_files})
 intgrid_lint_rtl(index_fusion_lint_b16_l16 index_fusion -GB=16 -GLANES=16 ${_if_rtl_files})
 find_program(INTGRID_YOSYS yosys)
-if(INTGRID_YOSYS)
+if(INTGRID_YOSYS AND INTGRID_HW_RTL_BENCHES)
   string(JOIN " " _if_yosys_read ${_if_rtl_files})
   add_test(NAME index_fusion_synth_ice40
            COMMAND ${INTGRID_YOSYS} -q -p
@@ -47,12 +47,14 @@ set_source_files_properties(index_fusion_hls_synth.cpp PROPERTIES
   COMPILE_DEFINITIONS __SYNTHESIS__ COMPILE_OPTIONS "-std=c++17;-Werror;-Wno-unknown-pragmas")
 gtest_discover_tests(index_fusion_cpp_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
 
+if(INTGRID_HW_RTL_BENCHES)
 # --- The Verilator testbench of the RTL --------------------------------------------------------
 # B:LANES of the Verilated models: B = 8 at every power-of-two LANES (exhaustive, 65,536 pairs in
 # every lane), then the other widths on buses that make lanes straddle 32- and 64-bit words.
 set(INTGRID_INDEX_FUSION_CONFIGS 8:1 8:2 8:4 8:8 8:16 4:16 6:16 10:7 12:8 16:1 16:16)
 add_executable(index_fusion_rtl_test index_fusion_rtl_test.cpp)
-target_link_libraries(index_fusion_rtl_test PRIVATE intgrid_core intgrid_kernel GTest::gtest)
+target_link_libraries(index_fusion_rtl_test PRIVATE intgrid_core intgrid_kernel intgrid_tb_verilated_context
+                                                    GTest::gtest)
 target_include_directories(index_fusion_rtl_test PRIVATE ${PROJECT_SOURCE_DIR}
                                                          ${CMAKE_CURRENT_BINARY_DIR})
 # Verilator's runtime headers, as system headers: the project's -Wconversion is not for them.
@@ -91,6 +93,7 @@ ${_if_includes}
 ${_if_xmacro}
 " @ONLY)
 gtest_discover_tests(index_fusion_rtl_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
+endif()
 
 # --- The SystemC co-simulation ------------------------------------------------------------------
 add_executable(index_fusion_cosim index_fusion_cosim.cpp)

@@ -24,6 +24,7 @@
 
 #include "index_fusion_configs.hpp"  // generated: the Verilated models, INTGRID_INDEX_FUSION_CONFIGS
 #include "testbench/index_fusion_tb.hpp"
+#include "testbench/verilated_thread_context.hpp"
 
 namespace {
 
@@ -71,10 +72,8 @@ class Harness {
     context_.traceEverOn(g_trace.on);
     context_.randReset(init_seed < 0 ? 0 : 2);
     if (init_seed >= 0) context_.randSeed(init_seed);
-    context_.fatalOnError(false);  // a failed assertion fails the run, it does not abort
-    // Verilator's runtime looks models up in the thread's context: with several harnesses
-    // alive, it must be this one's whenever its model is built or destroyed.
-    Verilated::threadContextp(&context_);
+    context_.fatalOnError(false);      // a failed assertion fails the run, it does not abort
+    use_verilated_context(&context_);  // while its model is built (see the function)
     top_ = std::make_unique<VModel>(&context_, "top");
     if (g_trace.on) {
       vcd_ = std::make_unique<VerilatedFstC>();
@@ -88,7 +87,7 @@ class Harness {
   }
   ~Harness() {
     if (vcd_) vcd_->close();
-    Verilated::threadContextp(&context_);
+    use_verilated_context(&context_);
     top_->final();
     top_.reset();
   }

@@ -129,7 +129,7 @@ foreach(_case ${_ism_illegal})
                        PASS_REGULAR_EXPRESSION "%(Error|Warning-USERERROR)[^\n]*${_message}")
 endforeach()
 find_program(INTGRID_YOSYS yosys)
-if(INTGRID_YOSYS)
+if(INTGRID_YOSYS AND INTGRID_HW_RTL_BENCHES)
   foreach(_cfg ${_ism_configs})
     add_test(NAME sectoral_ism_synth_ice40_${_cfg} COMMAND sh ${_ism_rtl_dir}/synth.sh ${_cfg})
     set_tests_properties(sectoral_ism_synth_ice40_${_cfg} PROPERTIES LABELS hw
@@ -170,6 +170,7 @@ target_compile_definitions(hls_width_test PRIVATE INTGRID_HLS_WIDTH_CHECK)
 add_dependencies(hls_width_test sectoral_ism_tables)
 gtest_discover_tests(hls_width_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
 
+if(INTGRID_HW_RTL_BENCHES)
 # --- The Verilated models: one per configuration, and the broken variants ----------------------
 # cone16_bug: Phi read one entry off; cone16_bubble: the output stream's stage 1 waits for the
 # spill register when empty (INTGRID_FAULT_STREAM_BUBBLE, a bubble at the start of a bank);
@@ -211,7 +212,8 @@ endforeach()
 # Users of the models: Verilator's headers as system headers (the project's -Wconversion is not
 # for them), and the models' trace support.
 function(_ism_use_vmodels target)
-  target_link_libraries(${target} PRIVATE sectoral_ism_vmodels intgrid_core intgrid_kernel)
+  target_link_libraries(${target} PRIVATE sectoral_ism_vmodels intgrid_core intgrid_kernel
+                                          intgrid_tb_verilated_context)
   target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR} ${_ism_gen})
   target_include_directories(${target} SYSTEM PRIVATE ${VERILATOR_ROOT}/include
                                                       ${VERILATOR_ROOT}/include/vltstd ${_ism_vdirs})
@@ -227,6 +229,7 @@ add_executable(sectoral_ism_report sectoral_ism_report.cpp)
 _ism_use_vmodels(sectoral_ism_report)
 add_test(NAME sectoral_ism_report COMMAND sectoral_ism_report 300)
 set_tests_properties(sectoral_ism_report PROPERTIES LABELS hw)
+endif()
 
 # --- The SystemC co-simulation ------------------------------------------------------------------
 # Verilated SystemC models of both configurations and of the broken variant, with the index RAM

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "intgrid/kernel/ism_kernel.hpp"
+#include "testbench/verilated_thread_context.hpp"
 
 namespace intgrid::hw {
 
@@ -136,9 +137,7 @@ class IsmRtlBench {
     context_->randReset(init_seed < 0 ? 0 : 2);
     if (init_seed >= 0) context_->randSeed(init_seed);
     context_->fatalOnError(false);  // a failed assertion is counted by the bench, not aborted
-    // Verilator's runtime looks models up in the thread's context: with several benches alive,
-    // it must be this bench's one whenever its model is built or destroyed.
-    Verilated::threadContextp(context_.get());
+    tb::use_verilated_context(context_.get());  // while its model is built (see the function)
     model_ = std::make_unique<Model>(context_.get());
     model_->clk_i = 0;
 #if VM_TRACE
@@ -157,7 +156,7 @@ class IsmRtlBench {
 #if VM_TRACE
     if (trace_) trace_->close();
 #endif
-    Verilated::threadContextp(context_.get());
+    tb::use_verilated_context(context_.get());
     model_->final();
     model_.reset();
   }

@@ -474,7 +474,7 @@ template <class Model>
 std::string drive_stream(std::uint64_t seed, bool* failed) {
   VerilatedContext context;
   context.fatalOnError(false);
-  Verilated::threadContextp(&context);  // the runtime's view while m lives (see the bench)
+  tb::use_verilated_context(&context);  // while m is built and destroyed
   Model m(&context);
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution ready(0.5);

@@ -62,7 +62,7 @@ endfunction()
 
 add_executable(sectoral_ism_units_test sectoral_ism_units_test.cpp)
 add_dependencies(sectoral_ism_units_test ${_units_tables_target})
-target_link_libraries(sectoral_ism_units_test PRIVATE intgrid_hls intgrid_core intgrid_kernel
+target_link_libraries(sectoral_ism_units_test PRIVATE intgrid_tb_verilated_context intgrid_hls intgrid_core intgrid_kernel
                                                       GTest::gtest_main)
 target_include_directories(sectoral_ism_units_test PRIVATE ${PROJECT_SOURCE_DIR})
 foreach(_cfg ${_ism_configs})

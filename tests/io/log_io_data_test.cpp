@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -61,18 +60,6 @@ TEST(BundledLog, ReferenceScansAreASubsetOfTheLoop) {
   std::set<double> loop_times;
   for (const Scan& scan : read_log(kLoopLog).scans) loop_times.insert(scan.t);
   for (const Scan& scan : reference.scans) EXPECT_EQ(loop_times.count(scan.t), 1u) << scan.t;
-}
-
-TEST(BundledLog, ParsesWellUnderFiftyMilliseconds) {
-  using Clock = std::chrono::steady_clock;
-  auto fastest = Clock::duration::max();
-  for (int run = 0; run < 3; ++run) {
-    const auto start = Clock::now();
-    const Log log = read_log(kLoopLog);
-    fastest = std::min(fastest, Clock::now() - start);
-    ASSERT_EQ(log.scans.size(), 225u);
-  }
-  EXPECT_LT(fastest, std::chrono::milliseconds(50));
 }
 
 TEST(BundledLog, WriteThenReadIsExact) {

@@ -266,19 +266,40 @@ void GridSlam<Pr>::localize(const QuantizedScan& scan) {
   }
   heading_rays_[static_cast<std::size_t>(nt_)] = static_cast<std::uint32_t>(scan_rays_.size());
 
+  // A slice's poses above zero, in their bounding box, are scored together: a ray's empty
+  // product is taken one ray cell at a time over the box's rows of P_M(e) (poses one cell apart
+  // read neighbouring cells), each pose's factors in its own ray's order.
   const std::int8_t* cells = map_.cells.data();
-  for (int k = 0; k < nt_; ++k)
+  for (int k = 0; k < nt_; ++k) {
+    int i0 = n_, i1 = -1, j0 = n_, j1 = -1;
     for (int j = 0; j < n_; ++j)
-      for (int i = 0; i < n_; ++i) {
-        P& pose = pi_[pose_index(i, j, k)];
-        if (prob_.is_zero(pose)) continue;
-        const std::int8_t* base = cells + map_index(ox_ + i, oy_ + j);
-        typename Pr::Joint joint;
-        for (std::uint32_t r = heading_rays_[static_cast<std::size_t>(k)];
-             r < heading_rays_[static_cast<std::size_t>(k) + 1]; ++r) {
-          const Ray& ray = scan_rays_[r];
-          P empty_before =
-              prob_.product_of_empty(base, &ray_offsets_[ray.begin], ray.mid - ray.begin);
+      for (int i = 0; i < n_; ++i)
+        if (!prob_.is_zero(pi_[pose_index(i, j, k)])) {
+          i0 = std::min(i0, i), i1 = std::max(i1, i);
+          j0 = std::min(j0, j), j1 = std::max(j1, j);
+        }
+    if (i1 < 0) continue;
+    const int box_w = i1 - i0 + 1, box_h = j1 - j0 + 1;
+    const std::size_t box = static_cast<std::size_t>(box_w) * static_cast<std::size_t>(box_h);
+    const std::int64_t corner = map_index(ox_ + i0, oy_ + j0);
+    std::fill_n(joints_.begin(), box, typename Pr::Joint{});
+    for (std::uint32_t r = heading_rays_[static_cast<std::size_t>(k)];
+         r < heading_rays_[static_cast<std::size_t>(k) + 1]; ++r) {
+      const Ray& ray = scan_rays_[r];
+      std::fill_n(empty_products_.begin(), box, prob_.empty_product_start());
+      for (std::uint32_t e = ray.begin; e < ray.mid; ++e) {
+        const auto* cell_empty = cell_empty_.data() + corner + ray_offsets_[e];
+        for (int j = 0; j < box_h; ++j) {
+          Pr::multiply_empty(&empty_products_[static_cast<std::size_t>(j * box_w)],
+                             cell_empty + std::int64_t{j} * width, box_w);
+        }
+      }
+      for (int j = 0; j < box_h; ++j)
+        for (int i = 0; i < box_w; ++i) {
+          if (prob_.is_zero(pi_[pose_index(i0 + i, j0 + j, k)])) continue;
+          const std::size_t q = static_cast<std::size_t>(j * box_w + i);
+          const std::int8_t* base = cells + corner + std::int64_t{j} * width + i;
+          P empty_before = prob_.empty_product(empty_products_[q]);
           P sum = prob_.zero();
           for (std::uint32_t e = ray.mid; e < ray.end; ++e) {
             const int n = base[ray_offsets_[e]];
@@ -286,10 +307,17 @@ void GridSlam<Pr>::localize(const QuantizedScan& scan) {
                 sum, prob_.mul(prob_.mul(ray_likelihoods_[e], prob_.occupied(n)), empty_before));
             empty_before = prob_.mul(empty_before, prob_.empty(n));
           }
-          prob_.multiply_into(joint, prob_.add(sum, prob_.floor));
+          prob_.multiply_into(joints_[q], prob_.add(sum, prob_.floor));
         }
-        pose = prob_.mul(pose, prob_.root_of(joint, config.beam.tempering));
+    }
+    for (int j = 0; j < box_h; ++j)
+      for (int i = 0; i < box_w; ++i) {
+        P& pose = pi_[pose_index(i0 + i, j0 + j, k)];
+        if (prob_.is_zero(pose)) continue;
+        pose = prob_.mul(pose, prob_.root_of(joints_[static_cast<std::size_t>(j * box_w + i)],
+                                             config.beam.tempering));
       }
+  }
   normalize();
   for (P& p : pi_)
     if (prob_.below_prune(p)) p = prob_.zero();
@@ -332,6 +360,7 @@ void GridSlam<Pr>::map_scan(const QuantizedScan& scan) {
   std::int8_t* cells = map_.cells.data();
   const auto fuse_into_map = [&](std::int32_t cell, int n) {
     cells[cell] = static_cast<std::int8_t>(std::clamp(cells[cell] + n, -max, max));
+    cell_empty_[static_cast<std::size_t>(cell)] = prob_.empty_factor(cells[cell]);
   };
   const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
   for (const auto& [q, p] : poses) {

@@ -183,6 +183,9 @@ GridSlam<Pr>::GridSlam(const SlamSetup& setup, Pr probabilities)
   next_.assign(poses, prob_.zero());
   row_.assign(static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_), prob_.zero());
   plane_ = row_;
+  cell_empty_.assign(map_.cells.size(), prob_.empty_factor(0));
+  empty_products_.assign(row_.size(), prob_.empty_product_start());
+  joints_.assign(row_.size(), typename Pr::Joint{});
   ox_ = oy_ = -(n_ / 2);
   theta0_ = -std::int64_t{nt_ / 2} * heading_unit();
   pi_[pose_index(n_ / 2, n_ / 2, nt_ / 2)] = prob_.one();

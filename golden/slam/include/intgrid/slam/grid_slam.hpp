@@ -216,6 +216,8 @@ class GridSlam {
   SlamSetup setup_;
   Probabilities prob_;
   core::Grid<std::int8_t> map_;
+  // P_M(e) of every map cell, kept with map_ for the localization.
+  std::vector<typename Probabilities::EmptyProduct> cell_empty_;
   std::vector<P> pi_, next_, row_, plane_;
   int n_ = 0, nt_ = 0;  // window cells per side, headings
   // The window's origin: SLAM-frame cell (ox_, oy_) with the pose (fx_, fy_) mm from its centre
@@ -231,6 +233,8 @@ class GridSlam {
   std::vector<std::int32_t> ray_offsets_;
   std::vector<P> ray_likelihoods_;
   std::vector<Ray> scan_rays_;
+  std::vector<typename Probabilities::EmptyProduct> empty_products_;  // per pose of a slice's box
+  std::vector<typename Probabilities::Joint> joints_;                 // per pose of a slice's box
   std::vector<std::int16_t> scan_image_;
   std::vector<std::int32_t> touched_, slot_, mix_cells_;
   std::vector<P> mix_occupied_, mix_empty_, mix_weight_;

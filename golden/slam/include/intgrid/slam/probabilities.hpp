@@ -58,12 +58,16 @@ struct DoubleProbabilities {
   }
   P occupied(int n) const { return occupied_of[static_cast<std::size_t>(n + max_seps)]; }
   P empty(int n) const { return empty_of[static_cast<std::size_t>(n + max_seps)]; }
-  // prod P_M(e) over the cells base[offsets[0..n)].
-  P product_of_empty(const std::int8_t* base, const std::int32_t* offsets, std::size_t n) const {
-    P product = 1.0;
-    for (std::size_t i = 0; i < n; ++i) product *= empty(base[offsets[i]]);
-    return product;
+  // prod P_M(e) over the cells a ray crosses, factor by factor in the ray's order.
+  using EmptyProduct = double;
+  EmptyProduct empty_factor(int n) const { return empty(n); }
+  EmptyProduct empty_product_start() const { return 1.0; }
+  // products[i] *= factors[i] for i < n (the arrays do not overlap).
+  static void multiply_empty(EmptyProduct* __restrict products,
+                             const EmptyProduct* __restrict factors, int n) {
+    for (int i = 0; i < n; ++i) products[i] *= factors[i];
   }
+  P empty_product(EmptyProduct product) const { return product; }
   // The S_eps index of P(o) = occ / (occ + emp), conservatively.
   int seps_of(P occ, P emp) const {
     const double total = occ + emp;
@@ -115,13 +119,18 @@ struct IndexProbabilities {
   }
   P occupied(int n) const { return occupied_of[static_cast<std::size_t>(n + max_seps)]; }
   P empty(int n) const { return empty_of[static_cast<std::size_t>(n + max_seps)]; }
-  // prod P_M(e) over the cells base[offsets[0..n)]: a plain sum of indices, saturated once
+  // prod P_M(e) over the cells a ray crosses: a plain sum of indices, saturated once at the end
   // (no P_M(e) is 0, so no term is the zero code).
-  P product_of_empty(const std::int8_t* base, const std::int32_t* offsets, std::size_t n) const {
-    std::int64_t sum = 0;
-    for (std::size_t i = 0; i < n; ++i) sum += empty(base[offsets[i]]);
-    return u.saturate(sum);
+  using EmptyProduct = std::int64_t;
+  EmptyProduct empty_factor(int n) const { return empty(n); }
+  EmptyProduct empty_product_start() const { return 0; }
+  // sums[i] += factors[i] for i < n (the arrays do not overlap). Out of line: inlined into the
+  // localization, which is compiled with general registers only, it ran 20% slower.
+  [[gnu::noinline]] static void multiply_empty(EmptyProduct* __restrict sums,
+                                               const EmptyProduct* __restrict factors, int n) {
+    for (int i = 0; i < n; ++i) sums[i] += factors[i];
   }
+  P empty_product(EmptyProduct sum) const { return u.saturate(sum); }
   // log-odds ln(occ / emp) = (emp - occ) ln(1/gamma), truncated toward zero in S_eps steps.
   int seps_of(P occ, P emp) const {
     if (u.is_zero(occ)) return u.is_zero(emp) ? 0 : -max_seps;

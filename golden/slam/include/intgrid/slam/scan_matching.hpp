@@ -165,22 +165,7 @@ class MaxPyramid {
     base.cells.assign(grid.cells().begin(), grid.cells().end());
     for (int d = 0; d < levels; ++d) {
       const Level& fine = levels_[static_cast<std::size_t>(d)];
-      const int h = 1 << d;
-      Level coarse;
-      coarse.width = fine.width + h;
-      coarse.height = fine.height + h;
-      coarse.cells.resize(static_cast<std::size_t>(coarse.width) *
-                          static_cast<std::size_t>(coarse.height));
-      // Level d's cell (x, y) starts at grid cell (x - (2^d - 1), y - (2^d - 1)).
-      for (int y = 0; y < coarse.height; ++y)
-        for (int x = 0; x < coarse.width; ++x) {
-          const int fx = x - h, fy = y - h;  // the fine cell starting 2^d earlier
-          const Cell a = fine.get(fx, fy), b = fine.get(fx + h, fy), e = fine.get(fx, fy + h),
-                     f = fine.get(fx + h, fy + h);
-          coarse.cells[static_cast<std::size_t>(y) * static_cast<std::size_t>(coarse.width) +
-                       static_cast<std::size_t>(x)] = std::max({a, b, e, f});
-        }
-      levels_[static_cast<std::size_t>(d) + 1] = std::move(coarse);
+      levels_[static_cast<std::size_t>(d) + 1] = coarser(fine, 1 << d);
     }
   }
 
@@ -208,6 +193,37 @@ class MaxPyramid {
                    static_cast<std::size_t>(x)];
     }
   };
+  // Level d + 1 from level d (h = 2^d): its cell (x, y) is the largest of the fine cells
+  // (x - h, y - h), (x, y - h), (x - h, y) and (x, y), outside cells counting 0; taken as the
+  // larger of two row maxima (the same value: max is exact and keeps the first of equals).
+  static Level coarser(const Level& fine, int h) {
+    Level coarse;
+    coarse.width = fine.width + h;
+    coarse.height = fine.height + h;
+    coarse.cells.resize(static_cast<std::size_t>(coarse.width) *
+                        static_cast<std::size_t>(coarse.height));
+    // The larger of fine cells (x - h, r) and (x, r), for a row r that may lie outside.
+    const auto row_max = [&](const Cell* row, int x) {
+      if (row == nullptr) return Cell{};
+      const Cell left = x >= h ? row[x - h] : Cell{};
+      const Cell here = x < fine.width ? row[x] : Cell{};
+      return std::max(left, here);
+    };
+    for (int y = 0; y < coarse.height; ++y) {
+      const auto row = [&](int r) {
+        return r >= 0 && r < fine.height
+                   ? &fine.cells[static_cast<std::size_t>(r) * static_cast<std::size_t>(fine.width)]
+                   : nullptr;
+      };
+      const Cell* above = row(y - h);
+      const Cell* here = row(y);
+      Cell* out =
+          &coarse.cells[static_cast<std::size_t>(y) * static_cast<std::size_t>(coarse.width)];
+      for (int x = 0; x < coarse.width; ++x) out[x] = std::max(row_max(above, x), row_max(here, x));
+    }
+    return coarse;
+  }
+
   int x0_, y0_;
   std::vector<Level> levels_;
 };
