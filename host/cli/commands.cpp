@@ -14,6 +14,7 @@
 #include "cli/hardware_summary.hpp"
 #include "cli/install_paths.hpp"
 #include "cli/kernel_agreement.hpp"
+#include "cli/log_input.hpp"
 #include "cli/map_job.hpp"
 #include "cli/slam_job.hpp"
 #include "cli/slam_sweeps.hpp"
@@ -175,7 +176,8 @@ void add_map_command(CLI::App& app) {
         {"arith", o->arithmetic == core::Arithmetic::integer ? "int" : "float"},
         {"seconds", r.seconds},
         {"eps", r.codec ? nlohmann::json(r.codec->eps()) : nlohmann::json()},
-        {"stats", stats_json(r.stats)}};
+        {"stats", stats_json(r.stats)},
+        {"skipped_records", skipped_records_json(r.skipped_records)}};
     if (*json) return print_json(j);
     std::printf("wrote %s/map.yaml, map.pgm, map.png\n", o->out.string().c_str());
     std::printf(

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cli/commands.hpp"
+#include "cli/log_input.hpp"
 #include "cli/options.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/figures/bitmap_font.hpp"
@@ -305,7 +306,8 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   check_global_loc_options(o.config);
   if (o.every == 0) bad_option("--every", "must be at least 1");
   const io::RosMap map = io::read_ros_map(o.map);
-  const core::Log log = io::read_log(o.log);
+  const LogInput input = read_log_input(o.log);
+  const core::Log& log = input.log;
   if (log.scans.empty()) throw io::InputError(o.log, 0, "scans", "the log holds no scan");
   if (o.reference && o.reference_trajectory)
     bad_option("--reference-trajectory", "is given with --reference: one reference a run");
@@ -449,6 +451,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   r.metrics = {
       {"map", o.map.string()},
       {"log", o.log.string()},
+      {"skipped_records", skipped_records_json(input.skipped)},
       {"method", global_method_name(o.method)},
       {"settings",
        {{"pose_res", c.pose_res},

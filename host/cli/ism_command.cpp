@@ -68,6 +68,7 @@ void run_narrow_ism(const IsmArgs& a) {
   const double cell = required(a.cell, "--cell", "without --fov");
   const double length = required(a.length, "--length", "without --fov");
   const double z = required(a.z, "--z", "(unless --fov with --agreement)");
+  check_reading_option(z);
   const auto cells = static_cast<std::size_t>(std::llround(length / cell));
   if (cells == 0) bad_option("--length", "must hold at least one cell of --cell");
   if (cells > 100'000'000) bad_option("--length", "holds more than 10^8 cells of --cell");

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cli/log_input.hpp"
 #include "cli/options.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/core/resolution.hpp"
@@ -83,9 +84,11 @@ MapJobResult map_log(const core::Log& log, const core::GridGeometry& geometry,
 }  // namespace
 
 MapJobResult run_map_job(const MapJobOptions& o) {
-  const core::Log log = io::read_log(o.log);
+  LogInput input = read_log_input(o.log);
+  const core::Log& log = input.log;
   const core::GridGeometry geometry = geometry_for(log, o);
-  const MapJobResult result = naming_flags(map_flags(o), [&] { return map_log(log, geometry, o); });
+  MapJobResult result = naming_flags(map_flags(o), [&] { return map_log(log, geometry, o); });
+  result.skipped_records = std::move(input.skipped);
 
   std::filesystem::create_directories(o.out);
   io::write_ros_map(o.out / "map.yaml", io::RosMap{result.map});

@@ -7,6 +7,7 @@
 
 #include "intgrid/core/map_compare.hpp"
 #include "intgrid/core/mapping.hpp"
+#include "intgrid/io/log_io.hpp"
 
 namespace intgrid::cli {
 
@@ -28,6 +29,7 @@ struct MapJobResult {
   core::InsertionStats stats;
   std::optional<core::SepsCodec> codec;  // the integer path's
   double seconds = 0.0;                  // insertion only, not I/O
+  io::SkippedRecords skipped_records;    // the log's records the reader skipped, by type
 };
 
 MapJobResult run_map_job(const MapJobOptions& options);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/log_input.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/figures/figure_layout.hpp"
 #include "intgrid/io/atomic_file.hpp"
@@ -159,7 +160,8 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     check_slam_options(o.grid_config);
   else
     check_graph_slam_options(o.submap_config);
-  const core::Log log = io::read_log(o.log);
+  LogInput input = read_log_input(o.log);
+  const core::Log& log = input.log;
   std::optional<core::Log> reference;
   if (o.reference) reference = io::read_log(*o.reference);
   try {
@@ -221,6 +223,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                {"scans", r.run.scans},
                {"readings", r.run.readings},
                {"unusable_readings", r.run.unusable_readings},
+               {"skipped_records", skipped_records_json(input.skipped)},
                {"reordered_scans", log.reordered_scans},
                {"seconds", r.seconds},
                {"log_seconds", r.log_seconds},

@@ -122,6 +122,32 @@ TEST_F(Cli, PgmSizeDisagreeingWithHeaderIsNamed) {
   expect_error(run("compare --map " + yaml.string() + " --reference " + yaml.string()), "pixels");
 }
 
+// A CARMEN log whose second FLASER keyword was damaged: its line is skipped, as CARMEN records
+// the pipeline does not use are, and the count shows on stderr and in the JSON.
+TEST_F(Cli, SkippedCarmenRecordsAreCountedAndShown) {
+  std::string beams = " 181";
+  for (int i = 0; i < 181; ++i) beams += " 1.5";
+  beams += " 1 2 0 1 2 0 ";
+  const fs::path log = write("damaged.clf",
+                             "PARAM robot_front_laser_max 50.0 nohost 0.0\n"
+                             "FLASER" +
+                                 beams +
+                                 "1000.0 h 0.0\n"
+                                 "FLXSER" +
+                                 beams +
+                                 "1001.0 h 0.0\n"
+                                 "FLASER" +
+                                 beams + "1002.0 h 0.0\n");
+  const CliRun r =
+      run("map --json --cell 0.1 --log " + log.string() + " --out " + (dir_ / "o").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(log.string() + ": skipped records: \"FLXSER\" 1, \"PARAM\" 1\n"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("\"FLXSER\": 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"scans\": 2"), std::string::npos) << r.output;
+}
+
 TEST_F(Cli, NegativeResolutionInMapYamlIsNamed) {
   write("m.pgm", std::string("P5\n2 2\n255\n") + std::string(4, '\xff'));
   const fs::path yaml = write("m.yaml",
@@ -842,6 +868,32 @@ fs::path write_globloc_room(const fs::path& dir) {
   return dir / "room.yaml";
 }
 
+// The room against itself 100 m away: far past any small tolerance, within any huge one. The
+// search window is cut to the grid (a tolerance of 10^9 cells once searched 10^18 cells, and
+// 10^10 overflowed to a window of none).
+TEST_F(Cli, CompareTakesAnyToleranceAndRefusesAnAbsurdResolution) {
+  const fs::path room = write_globloc_room(dir_);
+  std::ofstream(dir_ / "far.yaml") << "image: room.pgm\nresolution: 0.1\norigin: [100, 0, 0]\n"
+                                      "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  const std::string base =
+      "compare --map " + room.string() + " --reference " + (dir_ / "far.yaml").string();
+  for (const char* tolerance : {"1e9", "1e10", "1e300"}) {
+    const CliRun r = run(base + " --tolerance-cells " + tolerance);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("of the reference's: 100.0%"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("of ours: 100.0%"), std::string::npos) << r.output;
+  }
+  const CliRun near = run(base + " --tolerance-cells 2");
+  ASSERT_EQ(near.status, 0) << near.output;
+  EXPECT_NE(near.output.find("of the reference's: 0.0%"), std::string::npos) << near.output;
+  expect_error(run(base + " --tolerance-cells nan"), "--tolerance-cells");
+  std::ofstream(dir_ / "fine.yaml") << "image: room.pgm\nresolution: 1e-320\norigin: [0, 0, 0]\n"
+                                       "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  expect_error(
+      run("compare --map " + room.string() + " --reference " + (dir_ / "fine.yaml").string()),
+      "resolution");
+}
+
 TEST_F(Cli, GlobLocWritesPosesPictureAndMetricsAndScoresAgainstAReference) {
   const fs::path room = write_globloc_room(dir_);
   const fs::path sim = dir_ / "sim";
@@ -1119,6 +1171,8 @@ TEST_F(Cli, EveryBadInputExitsTwoNamingTheFlagOrTheFile) {
       {narrow + " --bits 17", "--bits", "ism"},
       {narrow + " --bits 2.5", "--bits", "ism"},
       {narrow + " --eps 0.5", "--eps", "ism"},
+      {narrow + " --eps 1e-17", "--eps", "ism"},
+      {"ism --sigma 0.02 --cell 0.05 --z -1 --length 2", "--z", "ism"},
       {narrow + " --k-d -1", "--k-d", "ism"},
       {"ism --sigma 0.02 --cell 0.05 --z 1 --length 0.01", "--length", "ism"},
       {"ism --sigma 0.02 --cell 0.05 --length 2", "--z", "ism"},
@@ -1148,6 +1202,7 @@ TEST_F(Cli, EveryBadInputExitsTwoNamingTheFlagOrTheFile) {
       {map + " --cell 0.05 --bits 1", "--bits", "map"},
       {map + " --cell 0.05 --levels 0", "--levels", "map"},
       {map + " --cell 0.05 --eps 0.7", "--eps", "map"},
+      {map + " --cell 0.05 --eps 1e-300", "--eps", "map"},  // 1/2 + eps rounds to 1/2
       {map + " --cell 0.05 --arith double", "--arith", "map"},
       {map + " --cell 0.05 --veto-bound maybe", "--veto-bound", "map"},
       {"map --log " + missing + " --out " + out + " --cell 0.05", missing, ""},

@@ -139,6 +139,17 @@ TEST(Seps, ExtremesAndBadArguments) {
   EXPECT_THROW(SepsCodec(17, 0.1), std::invalid_argument);
   EXPECT_THROW(SepsCodec(8, 0.5), std::invalid_argument);
   EXPECT_THROW(SepsCodec(8, -0.1), std::invalid_argument);
+  // 1/2 + eps rounds to 1/2, or the indices' probabilities to fewer doubles than indices.
+  EXPECT_THROW(SepsCodec(8, 1e-300), std::invalid_argument);
+  EXPECT_THROW(SepsCodec(8, 1e-17), std::invalid_argument);
+  // Far above that: every index its own probability, which quantizes back to it.
+  const SepsCodec tiny(8, 1e-12);
+  for (int n = -tiny.max_index(); n <= tiny.max_index(); ++n) {
+    if (n <= 0) {
+      EXPECT_EQ(tiny.quantize_conservative(tiny.probability(n)), n) << n;
+    }
+    EXPECT_EQ(tiny.quantize_nearest(tiny.probability(n)), n) << n;
+  }
   EXPECT_THROW(SepsCodec::for_confidence(8, 1.0), std::invalid_argument);
 }
 

@@ -171,13 +171,21 @@ TEST(RosMap, HugeHeaderIsRejectedBeforeAllocating) {
   EXPECT_THAT(message, HasSubstr("exceeds 2^31"));
 }
 
-TEST(RosMap, NegativeResolutionNamesItsLine) {
+// Negative, denormal or absurdly coarse resolutions name their line; the bounds themselves read.
+TEST(RosMap, ResolutionOutsideItsRangeNamesItsLine) {
   const TempDir dir;
   dir.write("map.pgm", small_p5());
-  const auto yaml = dir.write("map.yaml", map_yaml("-0.05"));
-  const std::string message =
-      expect_input_error([&] { read_ros_map(yaml); }, yaml, 2, "resolution");
-  EXPECT_THAT(message, HasSubstr("positive"));
+  for (const char* resolution : {"-0.05", "0", "1e-320", "0.00009", "100.5"}) {
+    SCOPED_TRACE(resolution);
+    const auto yaml = dir.write("map.yaml", map_yaml(resolution));
+    const std::string message =
+        expect_input_error([&] { read_ros_map(yaml); }, yaml, 2, "resolution");
+    EXPECT_THAT(message, HasSubstr("must lie in [0.0001, 100]"));
+  }
+  for (const char* resolution : {"0.0001", "100"}) {
+    const auto yaml = dir.write("map.yaml", map_yaml(resolution));
+    EXPECT_EQ(read_ros_map(yaml).grid.geometry.resolution, std::stod(resolution));
+  }
 }
 
 TEST(RosMap, NonNumericResolutionIsAnError) {

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "intgrid/io/input_error.hpp"
@@ -59,6 +61,45 @@ TEST(ParseNumber, RejectsJunkAndNamesTheIndexedField) {
         kFile, 12, "r_17");
     EXPECT_EQ(message, "cannot parse \"" + std::string(token) + "\" as a number");
   }
+}
+
+TEST(QuoteInput, EscapesWhatIsNotPrintableAndCutsLongInput) {
+  EXPECT_EQ(quote_input("FLASER"), "\"FLASER\"");
+  EXPECT_EQ(quote_input(std::string_view("a\x01\n\"\\\xff", 6)), "\"a\\x01\\x0a\\x22\\x5c\\xff\"");
+  const std::string long_input(600'000, '\x7f');  // a PGM header run into its pixels
+  std::string expected = "\"";
+  for (int i = 0; i < 32; ++i) expected += "\\x7f";
+  expected += "...\"";
+  EXPECT_EQ(quote_input(long_input), expected);
+  EXPECT_EQ(quote_input("abcdefghij", 4), "\"abcd...\"");
+  EXPECT_EQ(quote_input("abcd", 4), "\"abcd\"");
+  // A token too long to show is cut in the parser's message too.
+  const std::string message = expect_input_error(
+      [&] { parse_number<double>(std::string(100, '9') + "x", kFile, 1, "r_0"); }, kFile, 1, "r_0");
+  EXPECT_EQ(message, "cannot parse \"" + std::string(32, '9') + "...\" as a number");
+}
+
+// A device that never ends and a file past the limit are refused before they are read.
+TEST(ReadInputFile, RefusesWhatIsNotARegularFileAndFilesPastTheLimit) {
+  const auto message_of = [](const std::filesystem::path& file) {
+    try {
+      (void)read_input_file(file);
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), file);
+      EXPECT_EQ(e.field(), "file");
+      return e.message();
+    }
+    ADD_FAILURE() << file << " was read";
+    return std::string();
+  };
+  EXPECT_EQ(message_of("/dev/zero"), "is not a regular file (a device, pipe or socket)");
+  const test::TempDir dir;
+  const std::filesystem::path large = dir.path() / "large.log";
+  std::ofstream(large).put('x');
+  std::filesystem::resize_file(large, kMaxInputFileBytes + 1);  // sparse: no disk space taken
+  EXPECT_EQ(message_of(large), "is larger than 2048 MiB, the limit of an input file");
+  std::filesystem::resize_file(large, 3);
+  EXPECT_EQ(read_input_file(large), std::string("x\0\0", 3));
 }
 
 TEST(ParseNumber, IntegersRejectFractions) {

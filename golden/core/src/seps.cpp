@@ -18,6 +18,9 @@ SepsCodec::SepsCodec(int bits, double eps)
     fail<std::invalid_argument>("eps must lie in (0, 1/2), got " + std::to_string(eps));
   lambda_ = logit(0.5 + eps);
   for (int n = 0; n <= max_index_; ++n) empty_thresholds_.push_back(probability(-n));
+  // Below some eps, 1/2 + eps rounds to 1/2 (or p_-1 to 1/2): the indices would have no step.
+  if (!(empty_thresholds_[1] < empty_thresholds_[0]))
+    fail<std::invalid_argument>("eps is too small: 1/2 plus it rounds to 1/2 in double precision");
 }
 
 SepsCodec SepsCodec::for_confidence(int bits, double p_most) {

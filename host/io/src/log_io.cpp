@@ -138,8 +138,7 @@ class RecordFields {
     const std::optional<std::string_view> first_extra = rest.take_token();
     if (!first_extra) return;
     fail({keyword_}, std::to_string(1 + rest.remaining_count()) + " unexpected field(s) after " +
-                         last_field_.str() + ", starting with \"" + std::string(*first_extra) +
-                         "\"");
+                         last_field_.str() + ", starting with " + quote_input(*first_extra));
   }
 
  private:
@@ -200,8 +199,8 @@ core::Log parse_intgrid_log(const fs::path& file, std::string_view text) {
     } else if (fields.keyword() == "ODOM") {
       log.odometry.push_back(read_intgrid_odometry(fields));
     } else {
-      fields.fail({"record type"}, "unknown record type \"" + std::string(fields.keyword()) +
-                                       "\" (expected RLASER or ODOM)");
+      fields.fail({"record type"}, "unknown record type " + quote_input(fields.keyword()) +
+                                       " (expected RLASER or ODOM)");
     }
   }
   require_scans(file, log, "RLASER");

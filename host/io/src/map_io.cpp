@@ -141,7 +141,7 @@ MapMode read_mode(const MapYaml& yaml) {
   if (name == "trinary") return MapMode::trinary;
   if (name == "scale") return MapMode::scale;
   if (name == "raw") return MapMode::raw;
-  yaml.fail(mode, "mode", "unknown mode \"" + name + "\" (trinary, scale or raw)");
+  yaml.fail(mode, "mode", "unknown mode " + quote_input(name) + " (trinary, scale or raw)");
 }
 
 MapDescription read_map_description(const fs::path& file) {
@@ -150,8 +150,11 @@ MapDescription read_map_description(const fs::path& file) {
   map.image = read_image_path(yaml);
 
   map.resolution = yaml.number("resolution");
-  if (!(map.resolution > 0.0)) {
-    yaml.fail(yaml.required("resolution"), "resolution", "must be positive (metres per cell)");
+  // A tenth of a millimetre to a hundred metres a cell: past either end no robot's map, and
+  // grid coordinates (metres / resolution) would lose their meaning.
+  if (!(map.resolution >= 1e-4 && map.resolution <= 100.0)) {
+    yaml.fail(yaml.required("resolution"), "resolution",
+              "must lie in [0.0001, 100] (metres per cell)");
   }
   read_origin(yaml, map);
 
@@ -256,14 +259,6 @@ class PgmTokens {
   std::size_t line_ = 1;
 };
 
-std::string printable(std::string_view bytes) {
-  std::string text(bytes);
-  for (char& c : text) {
-    if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
-  }
-  return text;
-}
-
 int read_dimension(PgmTokens& tokens, const std::string& field) {
   const long long value = tokens.next_integer(field);
   if (value <= 0 || value > kMaxPixels) {
@@ -315,8 +310,8 @@ MapImage read_pgm(const fs::path& file, std::string_view data) {
   PgmTokens tokens(file, data);
   const std::string_view magic = tokens.next().value_or("");
   if (magic != "P5" && magic != "P2") {
-    tokens.fail("magic", "expected P5 (binary PGM), P2 (ASCII PGM) or a PNG signature, found \"" +
-                             printable(magic.substr(0, 8)) + "\"");
+    tokens.fail("magic", "expected P5 (binary PGM), P2 (ASCII PGM) or a PNG signature, found " +
+                             quote_input(magic, 8));
   }
   MapImage image;
   image.width = read_dimension(tokens, "width");

@@ -54,7 +54,7 @@ std::array<double, N> parse_fields(const fs::path& file, std::size_t line, std::
     while (take_token(text)) ++count;
     throw InputError(file, line, fields[N - 1],
                      std::to_string(count) + " unexpected field(s) after " + fields[N - 1] +
-                         ", starting with \"" + std::string(*extra) + "\"");
+                         ", starting with " + quote_input(*extra));
   }
   return values;
 }

@@ -55,6 +55,15 @@ std::string read_input_file(const std::filesystem::path& file) {
   struct stat status {};
   if (::fstat(fd, &status) != 0) throw_unreadable(file, "cannot read", errno);
   if (S_ISDIR(status.st_mode)) throw_unreadable(file, "cannot open", EISDIR);
+  // A device or a pipe may never end (/dev/zero): only regular files, and no larger than the limit.
+  if (!S_ISREG(status.st_mode))
+    throw InputError(file, 0, "file", "is not a regular file (a device, pipe or socket)");
+  const auto too_large = [&] {
+    throw InputError(file, 0, "file",
+                     "is larger than " + std::to_string(kMaxInputFileBytes >> 20) +
+                         " MiB, the limit of an input file");
+  };
+  if (static_cast<std::uintmax_t>(status.st_size) > kMaxInputFileBytes) too_large();
 
   std::string content;
   content.reserve(static_cast<std::size_t>(status.st_size));
@@ -66,6 +75,7 @@ std::string read_input_file(const std::filesystem::path& file) {
       if (errno == EINTR) continue;
       throw_unreadable(file, "cannot read", errno);
     }
+    if (content.size() + static_cast<std::size_t>(count) > kMaxInputFileBytes) too_large();
     content.append(buffer, static_cast<std::size_t>(count));
   }
 }
@@ -89,8 +99,7 @@ T parse_number(std::string_view token, const std::filesystem::path& file, std::s
   const auto [stop, error] = std::from_chars(digits.data(), end, value);
   if (error != std::errc{} || stop != end) {
     const char* const kind = std::is_integral_v<T> ? "an integer" : "a number";
-    throw InputError(file, line, field.str(),
-                     "cannot parse \"" + std::string(token) + "\" as " + kind);
+    throw InputError(file, line, field.str(), "cannot parse " + quote_input(token) + " as " + kind);
   }
   return value;
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace intgrid::io {
 
@@ -26,5 +27,9 @@ class InputError : public std::runtime_error {
   std::string field_;
   std::string message_;
 };
+
+// Raw input quoted for an error message: in double quotes, bytes other than printable ASCII as
+// \xNN, cut after `max_chars` characters with "..." (a damaged file must not flood a terminal).
+std::string quote_input(std::string_view text, std::size_t max_chars = 32);
 
 }  // namespace intgrid::io

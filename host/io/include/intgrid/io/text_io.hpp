@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -13,7 +14,11 @@ namespace intgrid::io {
 // printf into a std::string, for the commands' tables and messages.
 [[gnu::format(printf, 1, 2)]] std::string printed(const char* format, ...);
 
-// The whole content of a file. A missing or unreadable file is an InputError with field "file".
+// The largest input file the readers take: 2 GiB (the Freiburg benchmark's logs are 8 and 16 MB).
+inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{2} << 30;
+
+// The whole content of a file. A missing or unreadable file, one that is not a regular file or
+// one larger than kMaxInputFileBytes is an InputError with field "file".
 std::string read_input_file(const std::filesystem::path& file);
 
 // A field name for error messages. An index is appended ("r_" and 17 make "r_17") only when an
