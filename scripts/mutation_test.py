@@ -45,6 +45,9 @@ TARGET_DIRS = re.compile(r"(^|/)(testbench|[^/]*formal[^/]*)(/|$)")
 # --affected-only builds and tests in stages, cheapest first: the sub-module unit tests, the
 # kernels' RTL tests, then every target.
 DEFAULT_STAGES = (("sectoral_ism_units_test",), ("index_fusion_rtl_test", "sectoral_ism_rtl_test"))
+# Built outside testbench/ but run by hardware tests: `intgrid hw-config` writes the generated
+# configuration the generated-configuration tests lint and synthesize.
+COMMAND_TARGETS = ("intgrid",)
 EXPECTED_KINDS = ("equivalent", "unreachable")
 KEYS = ("file", "find", "replace", "what", "expected")
 
@@ -248,9 +251,10 @@ def full_preset(source: Path, name: str = "full") -> tuple[dict[str, str], str |
     return resolve(name)
 
 
-def configure(src: Path, build: Path, log: Path) -> None:
+def configure(src: Path, build: Path, log: Path, fatal: bool = True) -> bool:
     """(Re)configures the mutation build directory with the full preset's cache variables;
-    a reconfigure keeps everything already built."""
+    a reconfigure keeps everything already built. A failure ends the campaign if `fatal`, else
+    it is returned."""
     cache, generator = full_preset(src)
     query = build / ".cmake/api/v1/query/codemodel-v2"
     query.parent.mkdir(parents=True, exist_ok=True)
@@ -268,12 +272,14 @@ def configure(src: Path, build: Path, log: Path) -> None:
         cmd += ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
     with log.open("w") as out:
         r = subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT, text=True)
-    if r.returncode != 0:
+    if r.returncode != 0 and fatal:
         sys.exit(f"mutation_test: configuring {build} failed, see {log}")
+    return r.returncode == 0
 
 
 def hardware_targets(build: Path) -> list[str]:
-    """The targets defined in testbench/ (and any *formal* directory), from CMake's file API."""
+    """The targets defined in testbench/ (and any *formal* directory), from CMake's file API,
+    and the command the configuration generator's tests run (COMMAND_TARGETS)."""
     reply = build / ".cmake/api/v1/reply"
     index = json.loads(sorted(reply.glob("index-*.json"))[-1].read_text())
     model = next(o for o in index["objects"] if o["kind"] == "codemodel")
@@ -283,7 +289,7 @@ def hardware_targets(build: Path) -> list[str]:
                if TARGET_DIRS.search(dirs[t["directoryIndex"]]["source"])]
     if not targets:
         sys.exit("mutation_test: no target in testbench/: is INTGRID_BUILD_HW on?")
-    return sorted(targets)
+    return sorted(targets) + list(COMMAND_TARGETS)
 
 
 # ------------------------------------------------------------------------------ one run
@@ -566,6 +572,13 @@ def run_mutant(args: argparse.Namespace, m: Mutant, build: Path, logs: Path, tar
     # rebuild, which a mutant they kill never needs.
     early = source_tests(programs, build) if programs and m.file.endswith(".sv") else []
     if early:
+        # The build tree first follows the mutated tree: CMake reads some RTL files when it
+        # configures (formal.cmake's negative tests copy them with a fault injected), and the
+        # previous mutant, killed here too, may have left a configuration made from its own.
+        if not configure(src, build, logs / f"{m.id}.configure.log", fatal=False):
+            record["result"], record["killer"] = "killed", "cmake (configure)"
+            record["killer_status"] = "configure time"
+            return
         t = run_tests(args, build, logs / f"{m.id}.source.log", timeout,
                       stop_on_failure=True, only=early)
         if t.status != "passed":
