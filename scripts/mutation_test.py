@@ -589,26 +589,27 @@ def run_mutant(args: argparse.Namespace, m: Mutant, build: Path, logs: Path, tar
     stages = ([st for st in args.stage if set(st) <= set(targets)] if programs else []) + [targets]
     ran = set(early)
     record["build_seconds"] = 0.0
-    for stage in stages:
+    for k, stage in enumerate(stages, 1):
+        # One log a stage (a later stage's must not overwrite what an earlier one ran).
+        build_log, test_log = f"{m.id}.stage{k}.build.log", f"{m.id}.stage{k}.test.log"
         before = built_programs(programs, build) if programs else {}
-        ok, build_s = build_targets(args, build, stage, logs / f"{m.id}.build.log")
+        ok, build_s = build_targets(args, build, stage, logs / build_log)
         record["build_seconds"] = round(record["build_seconds"] + build_s, 1)
         if not ok:
-            check = compile_time_check(logs / f"{m.id}.build.log", src)
+            check = compile_time_check(logs / build_log, src)
             if check:
                 record["result"], record["killer"] = "killed", check
                 record["killer_status"] = "compile time"
             else:
                 record["result"] = "build-broken"
-                record["detail"] = first_error(logs / f"{m.id}.build.log").replace(f"{src}/", "")
+                record["detail"] = first_error(logs / build_log).replace(f"{src}/", "")
             return
         only = ([n for n in affected_tests(programs, before, build) if n not in ran]
                 if programs else None)
         if only == []:
             continue
-        t = run_tests(args, build, logs / f"{m.id}.test.log", timeout, stop_on_failure=True,
-                      only=only)
-        record_tests(record, t, f"{m.id}.test.log")
+        t = run_tests(args, build, logs / test_log, timeout, stop_on_failure=True, only=only)
+        record_tests(record, t, test_log)
         if t.status != "passed":
             return
         ran.update(only or [])
