@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages intgrid needs, skipping those already present.
-#   setup.sh [host]  the host library, the command and their tests (the demo needs only these)
+#   setup.sh [host]  the host library, the command and their tests (the demo needs only these),
+#                    and ccache, which scripts/build.sh compiles through
 #   setup.sh full    also the benchmarks, the hardware toolchain (SystemC, Verilator, Yosys, z3,
 #                    nextpnr-ice40), the embedded one (arm-none-eabi, QEMU) and Python (pybind11)
 set -euo pipefail
 group="${1:-host}"
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config ccache
   libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev libeigen3-dev
   gnuplot-nox

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "data_dir.hpp"
 #include "intgrid/core/grid.hpp"
 #include "intgrid/io/input_error.hpp"
 
@@ -23,9 +24,8 @@ namespace fs = std::filesystem;
 // beside the checkout.
 inline fs::path benchmark_dir() {
   const char* dir = std::getenv("INTGRID_BENCHMARK_DIR");
-  return dir != nullptr && *dir != '\0'
-             ? fs::path(dir)
-             : fs::path(INTGRID_DATA_DIR) / "../../shared/data/benchmark";
+  return dir != nullptr && *dir != '\0' ? fs::path(dir)
+                                        : fs::path(data_dir()) / "../../shared/data/benchmark";
 }
 
 // The message of a benchmark test that cannot run.

@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "data_dir.hpp"
 #include "intgrid/io/log_io.hpp"
 #include "test_support.hpp"
 
@@ -17,7 +18,7 @@ using namespace intgrid::io;
 namespace intgrid {
 namespace {
 
-const std::filesystem::path kDataDir = INTGRID_DATA_DIR;
+const std::filesystem::path kDataDir = test::data_dir();
 const std::filesystem::path kLoopLog = kDataDir / "malaga_telecom_loop.log";
 const std::filesystem::path kReferenceLog = kDataDir / "malaga_telecom_loop_reference.log";
 

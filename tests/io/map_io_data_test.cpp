@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "data_dir.hpp"
 #include "intgrid/io/image_io.hpp"
 #include "intgrid/io/log_io.hpp"
 #include "intgrid/io/map_io.hpp"
@@ -16,7 +17,7 @@ using namespace intgrid::io;
 namespace intgrid {
 namespace {
 
-const std::filesystem::path kDataDir = INTGRID_DATA_DIR;
+const std::filesystem::path kDataDir = test::data_dir();
 
 TEST(BundledMaps, RoomMapGeometry) {
   const RosMap map = read_ros_map(kDataDir / "malaga_room_map.yaml");

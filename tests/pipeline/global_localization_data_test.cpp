@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "data_dir.hpp"
 #include "intgrid/experiments/global_localization_trials.hpp"
 #include "intgrid/io/map_io.hpp"
 #include "intgrid/localization/global_localization.hpp"
@@ -23,7 +24,7 @@ using namespace intgrid::io;
 namespace intgrid {
 namespace {
 
-const std::string kData = INTGRID_DATA_DIR;
+const std::string kData = test::data_dir();
 constexpr double kPi = std::numbers::pi;
 
 GlobalLocConfig room_config() {

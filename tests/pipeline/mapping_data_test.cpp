@@ -2,6 +2,7 @@
 // bundled map built from the same run (data/README.md).
 #include <gtest/gtest.h>
 
+#include "data_dir.hpp"
 #include "intgrid/core/map_compare.hpp"
 #include "intgrid/core/mapping.hpp"
 #include "intgrid/core/resolution.hpp"
@@ -14,7 +15,7 @@ using namespace intgrid::io;
 namespace intgrid {
 namespace {
 
-const std::string kData = INTGRID_DATA_DIR;
+const std::string kData = test::data_dir();
 
 struct Mapped {
   Grid<std::int8_t> indices;
