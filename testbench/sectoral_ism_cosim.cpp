@@ -10,15 +10,22 @@
 //   - the RTL's index writes against golden: each written index equals golden's index of that
 //     (ring, sector) for the reading in set-up;
 //   - once, the widths the RTL top derives against golden's (also public through the .vlt).
-// In reset the model's z_ready must be low (the RTL's is compared only out of reset).
+// In reset the model's z_ready must be low from the first edge that sees rst_n low (the reset
+// is synchronous: in the cycle rst_n falls, z_ready still shows the state before it); the RTL's
+// is compared only out of reset.
 // The first differing cycle and signal are reported. Each model's output stream is also
 // checked against golden's ism_kernel_indices by its own scoreboard (order, last flags, no
 // drop or duplicate, outputs stable while valid && !ready).
 //
 // Stimulus: the edge readings and 150 random ones, every 4th offered only to an idle kernel so
-// that set-up lengths show at the ports.
+// that set-up lengths show at the ports. With --bank-starts: 150 readings past the reach (the
+// shortest set-ups), each offered only once at most 2 cells of the stream are unsent, no gaps
+// and y_ready at random half the time, so that every bank starts under back-pressure (what
+// SectoralIsmRtl.Cone16BackPressureWastesNoReadyCycle does to the RTL alone): a bubble at a bank
+// start in either model shows as a y_valid mismatch.
 //
 //   sectoral_ism_cosim <cone16|cone12|cone16_bug_phi> [seed] [--fault rtl_phi|sc_schedule]
+//                      [--bank-starts]
 // (without a seed: INTGRID_ISM_SEED, else 42).
 // cone16_bug_phi is the RTL built with SECTORAL_ISM_BUG_PHI. With --fault, the run must fail,
 // and at the right cycle: rtl_phi, on the index RAM write data at the RTL's first index write
@@ -146,6 +153,7 @@ struct CosimPair : sc_core::sc_module, Cosim {
 
   const char* name_;
   Fault fault_;
+  bool bank_starts_;
   IsmKernelTables kernel;
   std::vector<std::uint32_t> readings;
   std::mt19937_64 rng;
@@ -159,18 +167,24 @@ struct CosimPair : sc_core::sc_module, Cosim {
                 first_rtl_write_error = 0;
   std::string first_write_error;
   bool resets_done = false, finished = false;
+  std::uint64_t reset_cycles = 0;  // consecutive cycles with rst_n low, counted by compare()
 
   SC_HAS_PROCESS(CosimPair);
   CosimPair(const sc_core::sc_module_name& name, const char* config_name, std::uint64_t seed,
-            Fault fault)
+            Fault fault, bool bank_starts)
       : sc_core::sc_module(name),
         name_(config_name),
         fault_(fault),
+        bank_starts_(bank_starts),
         kernel(make_ism_hw_kernel(ism_hw_config(Config::name))),
         rng(seed) {
-    readings = ism_edge_readings(kernel, kIsmReadingBits);
-    const auto r = ism_random_readings(kernel, kIsmReadingBits, 150, seed);
-    readings.insert(readings.end(), r.begin(), r.end());
+    if (bank_starts_) {
+      for (std::uint32_t i = 0; i < 150; ++i) readings.push_back(kernel.reach + i);
+    } else {
+      readings = ism_edge_readings(kernel, kIsmReadingBits);
+      const auto r = ism_random_readings(kernel, kIsmReadingBits, 150, seed);
+      readings.insert(readings.end(), r.begin(), r.end());
+    }
     for (Scoreboard* b : {&rtl_board, &model_board}) {
       b->k = &kernel;
       b->index_bits = Config::index_bits;
@@ -243,9 +257,11 @@ struct CosimPair : sc_core::sc_module, Cosim {
     while (true) {
       wait();
       if (!rst_n.read()) {  // the model takes no reading in reset
-        if (sc_z_ready.read()) model_board.fail("z_ready high in reset", cycle);
+        if (reset_cycles++ > 0 && sc_z_ready.read())
+          model_board.fail("z_ready high in reset", cycle);
         continue;
       }
+      reset_cycles = 0;
       const Write rw = rtl_write(), mw = model.index_ram_write();
       if (rtl_z_ready.read() != sc_z_ready.read())
         mismatch("z_ready", rtl_z_ready.read(), sc_z_ready.read());
@@ -306,7 +322,7 @@ struct CosimPair : sc_core::sc_module, Cosim {
 
   // At each rising edge: the outputs of the cycle that ends, scored; the next cycle's inputs.
   void drive() {
-    std::bernoulli_distribution gap(0.3), ready(0.6);
+    std::bernoulli_distribution gap(bank_starts_ ? 0.0 : 0.3), ready(bank_starts_ ? 0.5 : 0.6);
     hold_reset(4);
     std::size_t next = 0;
     bool offering = false, ready_now = false;
@@ -339,9 +355,13 @@ struct CosimPair : sc_core::sc_module, Cosim {
       }
       // Inputs of the next cycle.
       // Every 4th reading waits for an idle kernel (all output sent): the set-up's own length
-      // then shows at the ports instead of hiding behind the other bank's output.
-      if (!offering && next < readings.size() && !gap(rng) && (next % 4 != 3 || drained))
-        offering = true;
+      // then shows at the ports instead of hiding behind the other bank's output. With
+      // --bank-starts each reading waits until at most 2 cells are unsent.
+      std::size_t unsent = 0;
+      for (const auto& e : rtl_board.expected) unsent += e.size();
+      unsent -= rtl_board.cell;
+      const bool wait_for_stream = bank_starts_ ? unsent > 2 : next % 4 == 3 && !drained;
+      if (!offering && next < readings.size() && !gap(rng) && !wait_for_stream) offering = true;
       ready_now = ready(rng);
       z_valid.write(offering);
       z_last.write(offering);
@@ -401,7 +421,7 @@ struct CosimPair : sc_core::sc_module, Cosim {
 int usage() {
   std::fprintf(stderr,
                "usage: sectoral_ism_cosim <cone16|cone12|cone16_bug_phi> [seed] "
-               "[--fault rtl_phi|sc_schedule]\n");
+               "[--fault rtl_phi|sc_schedule] [--bank-starts]\n");
   return 2;
 }
 
@@ -412,9 +432,12 @@ int sc_main(int argc, char* argv[]) {
   const std::string config = argv[1];
   const char* seed_arg = nullptr;
   Fault fault = Fault::None;
+  bool bank_starts = false;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--fault" && i + 1 < argc) {
+    if (arg == "--bank-starts") {
+      bank_starts = true;
+    } else if (arg == "--fault" && i + 1 < argc) {
       const std::string f = argv[++i];
       if (f == "rtl_phi")
         fault = Fault::RtlPhi;
@@ -438,17 +461,17 @@ int sc_main(int argc, char* argv[]) {
   std::unique_ptr<Cosim> run;
   if (config == "cone16") {
     auto p = std::make_unique<CosimPair<Vsectoral_ism_sc_cone16, SectoralIsmCone16>>(
-        "cone16", "cone16", seed, fault);
+        "cone16", "cone16", seed, fault, bank_starts);
     p->clk(clk);
     run = std::move(p);
   } else if (config == "cone12") {
     auto p = std::make_unique<CosimPair<Vsectoral_ism_sc_cone12, SectoralIsmCone12>>(
-        "cone12", "cone12", seed, fault);
+        "cone12", "cone12", seed, fault, bank_starts);
     p->clk(clk);
     run = std::move(p);
   } else if (config == "cone16_bug_phi") {
     auto p = std::make_unique<CosimPair<Vsectoral_ism_sc_cone16_bug, SectoralIsmCone16>>(
-        "cone16_bug_phi", "cone16_bug_phi", seed, fault);
+        "cone16_bug_phi", "cone16_bug_phi", seed, fault, bank_starts);
     p->clk(clk);
     run = std::move(p);
   } else {
