@@ -168,6 +168,7 @@ void add_map_command(CLI::App& app) {
   add_arithmetic_option(*cmd, o->arithmetic, "int: S_eps indices; float: double-precision Bayes")
       ->default_str("int");
   add_model_options(*cmd, *o);
+  add_max_memory_option(*cmd, o->max_memory_bytes);
   cmd->add_flag("--json", *json, "print the run's figures as JSON");
   cmd->callback([o, json] {
     const MapJobResult r = run_map_job(*o);

@@ -1,6 +1,10 @@
 #include "cli/map_job.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -8,6 +12,7 @@
 #include "cli/options.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/core/resolution.hpp"
+#include "intgrid/core/scan_insertion.hpp"
 #include "intgrid/io/image_io.hpp"
 #include "intgrid/io/input_error.hpp"
 #include "intgrid/io/log_io.hpp"
@@ -52,6 +57,45 @@ core::GridGeometry geometry_for(const core::Log& log, const MapJobOptions& o) {
   }
 }
 
+// The job's large allocations, estimated before any is made: the grid (the probabilities, the
+// integer path's indices, the image and the PGM's bytes) and the ISM of the longest reading
+// (in double, and in the integer path quantized once per millimetre of range, which the
+// inserter keeps).
+void require_memory_for(const core::Log& log, const core::GridGeometry& geometry,
+                        const MapJobOptions& o) {
+  const double cells = static_cast<double>(geometry.width) * geometry.height;
+  const double index_bytes =
+      o.arithmetic == core::Arithmetic::integer ? (o.bits <= 8 ? 1.0 : 2.0) : 0.0;
+  require_memory(cells * (sizeof(double) + index_bytes + 4.0), o.max_memory_bytes, "--cell",
+                 "a grid of " + std::to_string(geometry.width) + " x " +
+                     std::to_string(geometry.height) + " cells of " + option_number(o.resolution) +
+                     " m over what the log saw (" + option_number(geometry.width * o.resolution) +
+                     " x " + option_number(geometry.height * o.resolution) + " m)");
+  double longest = 0.0;
+  std::set<long long> millimetres;  // the integer inserter's ISM per millimetre of range
+  for (const core::Scan& scan : log.scans)
+    for (const double z : scan.ranges)
+      if (core::classify_range(z, scan.max_range) == core::RangeClass::valid) {
+        longest = std::max(longest, z);
+        if (index_bytes > 0.0) millimetres.insert(std::llround(z * 1000.0));
+      }
+  const double ism_cells = std::ceil((longest + 8.0 * o.model.sigma(longest)) / o.resolution);
+  const double ism_bytes =
+      ism_cells * (sizeof(double) + static_cast<double>(millimetres.size()) * index_bytes);
+  const auto metres = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g m", v);
+    return std::string(text);
+  };
+  require_memory(ism_bytes, o.max_memory_bytes, o.model.k_d * longest > 1.0 ? "--k-d" : "--sigma",
+                 "the ISM of the log's longest reading (" + metres(longest) +
+                     ", spread over 8 sigma = " + metres(8.0 * o.model.sigma(longest)) + ") in " +
+                     metres(o.resolution) + " cells" +
+                     (index_bytes > 0.0 ? ", kept for each distinct range (" +
+                                              std::to_string(millimetres.size()) + "),"
+                                        : ""));
+}
+
 template <class Index>
 core::ProbabilityGrid map_with_indices(const core::Log& log, const MapJobOptions& o,
                                        const core::SepsCodec& codec,
@@ -87,6 +131,7 @@ MapJobResult run_map_job(const MapJobOptions& o) {
   LogInput input = read_log_input(o.log);
   const core::Log& log = input.log;
   const core::GridGeometry geometry = geometry_for(log, o);
+  require_memory_for(log, geometry, o);
   MapJobResult result = naming_flags(map_flags(o), [&] { return map_log(log, geometry, o); });
   result.skipped_records = std::move(input.skipped);
 

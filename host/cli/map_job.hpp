@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "cli/memory_budget.hpp"
 #include "intgrid/core/map_compare.hpp"
 #include "intgrid/core/mapping.hpp"
 #include "intgrid/io/log_io.hpp"
@@ -21,7 +22,8 @@ struct MapJobOptions {
   int levels = 16;            // eps from the ISM's Pmax: p_levels = Pmax
   std::optional<double> eps;  // overrides levels
   core::VetoBound veto = core::VetoBound::strongest_claim;
-  double margin = 1.0;  // metres of grid around what the log saw
+  double margin = 1.0;                                     // metres of grid around what the log saw
+  double max_memory_bytes = default_memory_limit_bytes();  // --max-memory
 };
 
 struct MapJobResult {

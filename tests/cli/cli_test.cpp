@@ -116,6 +116,54 @@ TEST_F(Cli, MissingFileIsNamed) {
                (dir_ / "nope.log").string());
 }
 
+// Two scans 3 km apart: a 112-byte log whose 5 cm map would hold 3.6e9 cells (about 47 GB).
+// The estimate is made before the grid is allocated: refused at once, naming --cell, and under a
+// limit that holds the smaller map of a log 3 km long and 2 m wide (about 77 MB), refused below
+// it and made above it.
+TEST_F(Cli, MapOverTheMemoryLimitIsRefusedNamingTheOption) {
+  const std::string far =
+      "RLASER 4 -0.5 0.3 10 1.0 1.0 1.0 1.0 0 0 0 0 0 0 1.0\n"
+      "RLASER 4 -0.5 0.3 10 1.0 1.0 1.0 1.0 3000 ";
+  const fs::path square = write("square.log", far + "3000 0 0 0 0 2.0\n");
+  const fs::path strip = write("strip.log", far + "2 0 0 0 0 2.0\n");
+  const std::string out = " --out " + (dir_ / "o").string() + " --cell 0.05";
+  CliRun r = run("map --log " + square.string() + out + " --max-memory 16000");
+  expect_error(r, "--cell: a grid of 60060 x 60058 cells");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("more than the memory limit of 16.0 GB (--max-memory)"),
+            std::string::npos);
+  r = run("map --log " + strip.string() + out + " --max-memory 50");
+  expect_error(r, "--cell: a grid of 60060 x 98 cells");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "o" / "map.yaml"));
+  r = run("map --log " + strip.string() + out + " --max-memory 200");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "o" / "map.yaml"));
+}
+
+// An ISM spread of 8e9 m (--sigma 1e9) is refused naming --sigma, not std::bad_alloc; a
+// growth of sigma with range that makes it large names --k-d; --max-memory takes a positive
+// finite number of megabytes from 1 on.
+TEST_F(Cli, IsmOverTheMemoryLimitIsRefusedNamingTheModelOption) {
+  const fs::path log = write("l.log", "RLASER 4 -0.5 0.3 10 1.0 1.0 1.0 1.0" + kScanTail);
+  const std::string args = "map --log " + log.string() + " --out " + (dir_ / "o").string() +
+                           " --cell 0.05 --max-memory 16000";
+  for (const char* arith : {"int", "float"}) {
+    CliRun r = run(args + " --arith " + arith + " --sigma 1e9");
+    expect_error(r, "--sigma: the ISM of the log's longest reading (1 m, spread over 8 sigma");
+    EXPECT_EQ(r.status, 2);
+    r = run(args + " --arith " + arith + " --k-d 1e9");
+    expect_error(r, "--k-d: the ISM of the log's longest reading");
+    EXPECT_EQ(r.status, 2);
+  }
+  for (const char* bad : {"0.5", "-1", "nan", "inf", "lots"}) {
+    const CliRun r = run("map --log " + log.string() + " --out " + (dir_ / "o").string() +
+                         " --cell 0.05 --max-memory " + bad);
+    expect_error(r, "--max-memory");
+    EXPECT_EQ(r.status, 2);
+  }
+}
+
 TEST_F(Cli, PgmSizeDisagreeingWithHeaderIsNamed) {
   write("m.pgm", std::string("P5\n4 4\n255\n") + std::string(10, '\xff'));
   const fs::path yaml = write("m.yaml",
