@@ -287,6 +287,7 @@ void add_slam_command(CLI::App& app) {
                   "benchmark relations file (t1 t2 x y z roll pitch yaw a line): scores the SLAM "
                   "and the raw odometry, in metrics.json and one line each on stderr");
   cmd->add_option("--tum", o->tum, "also write the SLAM trajectory here in the TUM format");
+  add_max_memory_option(*cmd, o->max_memory_bytes);
   add_arithmetic_option(*cmd, o->arithmetic,
                         "int: S_eps indices (and the grid engine's U_gamma); float: double")
       ->default_str("int");

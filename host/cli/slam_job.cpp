@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,7 @@
 #include "intgrid/io/map_io.hpp"
 #include "intgrid/io/relations_io.hpp"
 #include "intgrid/io/text_io.hpp"
+#include "intgrid/slam/grid_slam.hpp"
 
 namespace intgrid::cli {
 namespace {
@@ -155,6 +157,62 @@ std::string relation_summary(const std::string& what, const slam::RelationError&
       e.rot_std_deg);
 }
 
+// The map's cells, estimated from the odometry before SLAM runs, against --max-memory: a log
+// whose odometry wanders kilometres (or jumps there in one step) would otherwise have the
+// engine grow its grids until std::bad_alloc or the out-of-memory kill. The grid engine's map is
+// the square its setup allocates (15 bytes a cell in either arithmetic, 1 more for the copy the
+// run returns); the submaps engine's, the odometry's bounding box in the first pose's frame
+// grown by the range and the ISM's spread (the final map grows by copying, so twice its cells,
+// and the largest submap is taken as large as the map: 3 grid cells of 1 or 8 bytes, and 1 byte
+// for the map the run returns). Both then write the map: probabilities twice (8 bytes each), the
+// PGM and the image with its figure (7 bytes). What SLAM corrects of the odometry is left out:
+// the estimate is of the size the odometry implies, not a bound.
+void require_memory_for(const core::Log& log, const SlamJobOptions& o) {
+  constexpr double kOutputBytes = 8.0 + 8.0 + 7.0;
+  const auto metres = [](double v) { return io::printed("%.4g", v); };
+  double cells = 0.0, bytes_per_cell = 0.0, cell = 0.0;
+  std::string extent;
+  if (o.engine == SlamEngine::grid) {
+    const double reach = slam::odometry_reach(log.scans);
+    slam::SlamSetup setup;
+    try {
+      setup = slam::make_slam_setup(o.grid_config, log.scans.front(), reach);
+    } catch (const std::invalid_argument& e) {
+      // The configuration was checked: what is left is the map's size.
+      bad_option("--cell", "a map of " + metres(o.grid_config.cell) +
+                               " m cells around the first "
+                               "pose of " +
+                               o.log.string() + ", whose odometry reaches " + metres(reach) +
+                               " m from it: " + e.what());
+    }
+    cell = o.grid_config.cell;
+    cells = static_cast<double>(setup.map_geometry.width) * setup.map_geometry.height;
+    bytes_per_cell = 15.0 + 1.0 + kOutputBytes;
+    extent = "the square around the first pose that holds its odometry (reaching " + metres(reach) +
+             " m) and the range";
+  } else {
+    const slam::GraphSlamConfig& c = o.submap_config;
+    const core::Pose2 first = log.scans.front().robot;
+    double x_lo = 0.0, x_hi = 0.0, y_lo = 0.0, y_hi = 0.0;
+    for (const core::Scan& s : log.scans) {
+      const core::Pose2 p = core::relative(first, s.robot);
+      x_lo = std::min(x_lo, p.x), x_hi = std::max(x_hi, p.x);
+      y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
+    }
+    cell = c.cell;
+    const double margin = c.sensor.max_range + 8.0 * c.sensor.sigma + 68.0 * cell;
+    cells = std::ceil((x_hi - x_lo + 2.0 * margin) / cell) *
+            std::ceil((y_hi - y_lo + 2.0 * margin) / cell);
+    const double cell_bytes = o.arithmetic == core::Arithmetic::integer ? 1.0 : 8.0;
+    bytes_per_cell = 3.0 * cell_bytes + 1.0 + kOutputBytes;
+    extent =
+        "the odometry's " + metres(x_hi - x_lo) + " x " + metres(y_hi - y_lo) + " m and the range";
+  }
+  require_memory(cells * bytes_per_cell, o.max_memory_bytes, "--cell",
+                 "a map of " + io::printed("%.3g", cells) + " cells of " + metres(cell) +
+                     " m over " + extent + " in " + o.log.string());
+}
+
 SlamJobResult run_slam_job(const SlamJobOptions& o) {
   if (o.engine == SlamEngine::grid)
     check_slam_options(o.grid_config);
@@ -169,6 +227,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw io::InputError(o.log, 0, "scans", e.what());
   }
+  require_memory_for(log, o);
   if (reference && reference->scans.empty())
     throw io::InputError(*o.reference, 0, "scans", "the reference log has no scans");
 

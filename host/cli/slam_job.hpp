@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/memory_budget.hpp"
 #include "cli/options.hpp"
 #include "intgrid/slam/graph_slam.hpp"
 #include "intgrid/slam/log_run.hpp"
@@ -35,6 +36,7 @@ struct SlamJobOptions {
   slam::GraphSlamConfig submap_config;  // the settings of --engine submaps
   slam::SlamConfig grid_config;         // the settings of --engine grid
   bool progress = true;
+  double max_memory_bytes = default_memory_limit_bytes();  // --max-memory
 };
 
 struct SlamJobResult {

@@ -596,6 +596,39 @@ TEST_F(Cli, SlamWritesTrajectoryMapAndMetricsAndCountsSkippedScans) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+// Logs of a few bytes whose odometry wanders kilometres in steps under the 1 km a step may
+// take: each engine's map is estimated from the odometry before SLAM runs and refused over
+// --max-memory naming --cell (the submaps engine's 1.1e9-cell map and the grid engine's
+// 3e9-cell square ask for about 29 and 116 GB); a square past the grid engine's 65535 cells a
+// side names --cell too (it was an internal error, exit 1).
+TEST_F(Cli, SlamMapOverTheMemoryLimitIsRefusedNamingTheOption) {
+  const auto log_through = [&](const std::string& name, std::initializer_list<const char*> xy) {
+    std::string text;
+    int t = 0;
+    for (const char* p : xy)
+      text += "RLASER 4 -0.5 0.3 10 1.0 1.0 1.0 1.0 " + std::string(p) + " 0 0 0 0 " +
+              std::to_string(++t) + "\n";
+    return write(name, text);
+  };
+  const fs::path wander =
+      log_through("wander.log", {"0 0", "900 0", "1800 0", "2700 0", "2700 900"});
+  const std::string out = " --out " + (dir_ / "o").string();
+  for (const char* engine : {"submaps", "grid"}) {
+    const CliRun r =
+        run("slam --log " + wander.string() + out + " --engine " + engine + " --max-memory 16000");
+    expect_error(r, "--cell: a map of ");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.output.find("more than the memory limit of 16.0 GB (--max-memory)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "o" / "trajectory.txt"));
+  }
+  const fs::path far = log_through("far.log", {"0 0", "900 0", "1800 0", "2700 0", "3600 0"});
+  const CliRun r = run("slam --log " + far.string() + out + " --engine grid");
+  expect_error(r, "--cell: a map of 0.1 m cells around the first pose of " + far.string());
+  EXPECT_EQ(r.status, 2);
+}
+
 TEST_F(Cli, SlamRejectsEmptyMalformedAndOdometryFreeLogs) {
   const std::string out = " --out " + (dir_ / "out").string();
   CliRun r = run("slam --log " + write("empty.log", "").string() + out);
