@@ -720,20 +720,23 @@ TEST(GlobalLocalization, APoseGridAboveTheMemoryLimitIsRefusedBeforeItIsBuilt) {
   // The estimate covers at least the first hits and sums of every candidate pose cell.
   EXPECT_GE(lmap.memory_bytes(),
             lmap.candidate_cells() * LocalizationMap::kBytesPerCandidatePoseCell);
+  // ... and one scan's scores over every pose cell, in doubles.
+  EXPECT_GE(lmap.memory_bytes(), lmap.pose_cells() * sizeof(double));
   EXPECT_LE(lmap.memory_bytes(),
             2 * lmap.candidate_cells() * LocalizationMap::kBytesPerCandidatePoseCell +
-                world.cells.size() * 16);
+                lmap.pose_cells() * sizeof(double) + world.cells.size() * 16);
   config.memory_limit = lmap.memory_bytes();
   EXPECT_NO_THROW(LocalizationMap(world, 0.65, 0.196, config));
   config.memory_limit = lmap.memory_bytes() - 1;
   const std::string m = message_of([&] { LocalizationMap(world, 0.65, 0.196, config); });
   EXPECT_EQ(m.rfind("memory_limit: a pose grid of 44 x 36 cells x 48 heading bins", 0), 0u) << m;
-  // The baselines' two beliefs (8 bytes a candidate pose cell each) against the same limit, with
-  // headings enough that they outweigh the map's tables.
+  // The baselines' two beliefs (8 bytes a candidate pose cell each) beside the map's tables,
+  // against the same limit: a map within it, whose beliefs do not fit beside it, is refused by
+  // Markov localization.
   config.headings = 480;
   config.memory_limit = std::size_t{1} << 30;
-  const std::size_t beliefs = 16 * LocalizationMap(world, 0.65, 0.196, config).candidate_cells();
-  ASSERT_LT(LocalizationMap(world, 0.65, 0.196, config).memory_bytes(), beliefs - 1);
+  const LocalizationMap sized(world, 0.65, 0.196, config);
+  const std::size_t beliefs = sized.memory_bytes() + 16 * sized.candidate_cells();
   config.memory_limit = beliefs;
   const LocalizationMap roomy(world, 0.65, 0.196, config);
   EXPECT_NO_THROW(MarkovLocalization(roomy, GlobalMethod::markov));

@@ -185,7 +185,9 @@ LocalizationMap::LocalizationMap(const core::ProbabilityGrid& map, double occupi
 
   // What the tables and one scan's scores will take, checked before they are allocated: the
   // first hits and index sums per candidate pose cell, the line offsets, at most one source per
-  // occupied cell and direction, the per-position indices, the distance transform, the fine map.
+  // occupied cell and direction, the per-position indices, the distance transform, the fine map,
+  // and one scan's scores laid out over every pose cell (detail::in_pose_layout, for the first
+  // scan's pose grid and the tracker's fused scores: doubles for the baselines).
   const auto headings = std::size_t(config_.headings);
   const std::size_t occupied_cells =
       static_cast<std::size_t>(std::count(class_.begin(), class_.end(), PoseCellClass::occupied));
@@ -194,6 +196,7 @@ LocalizationMap::LocalizationMap(const core::ProbabilityGrid& map, double occupi
       double(headings) * (double(std::max(width_, height_)) * 4.0 +
                           double(occupied_cells) * double(sizeof(Source))) +
       double(wh) * double(sizeof(std::int32_t)) + double(free_cells_) * 4.0 +
+      double(wh) * double(headings) * double(sizeof(double)) +
       double(g.size()) * double(sizeof(double)) +
       (config_.refine_levels > 0
            ? double(FineMap::bytes_for(g, config_.headings << config_.refine_levels))
@@ -202,7 +205,8 @@ LocalizationMap::LocalizationMap(const core::ProbabilityGrid& map, double occupi
     refuse_memory("a pose grid of " + std::to_string(width_) + " x " + std::to_string(height_) +
                       " cells x " + std::to_string(headings) + " heading bins (" +
                       std::to_string(free_cells_ * headings) + " candidate pose cells, " +
-                      std::to_string(kBytesPerCandidatePoseCell) + " bytes each)",
+                      std::to_string(kBytesPerCandidatePoseCell) + " bytes each, and " +
+                      std::to_string(wh * headings) + " pose cells of scores, 8 bytes each)",
                   bytes, config_.memory_limit, ": a coarser pose cell or fewer headings");
   memory_bytes_ = static_cast<std::size_t>(bytes);
   candidate_of_.assign(wh, -1);
@@ -516,10 +520,13 @@ MarkovLocalization::MarkovLocalization(const LocalizationMap& map, GlobalMethod 
     : map_(&map), method_(method) {
   if (method == GlobalMethod::pose_grid)
     core::fail<std::invalid_argument>("method: Markov localization needs a baseline method");
-  const double bytes = 2.0 * sizeof(double) * double(map.candidate_cells());
+  // The two beliefs beside the map's tables, against the one limit (as PoseTracker counts).
+  const double bytes =
+      double(map.memory_bytes()) + 2.0 * sizeof(double) * double(map.candidate_cells());
   if (bytes > double(map.config().memory_limit))
     refuse_memory("Markov localization's two beliefs over " +
-                      std::to_string(map.candidate_cells()) + " candidate pose cells",
+                      std::to_string(map.candidate_cells()) +
+                      " candidate pose cells, beside the map's tables,",
                   bytes, map.config().memory_limit);
   belief_.assign(map.candidate_cells(), 1.0 / static_cast<double>(map.candidate_cells()));
   next_.assign(map.candidate_cells(), 0.0);

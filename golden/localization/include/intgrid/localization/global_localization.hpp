@@ -270,7 +270,8 @@ class LocalizationMap {
 class MarkovLocalization {
  public:
   // Uniform prior over the candidates. Throws std::invalid_argument for pose_grid, and (naming
-  // memory_limit) when the two beliefs would exceed the configuration's memory limit.
+  // memory_limit) when the two beliefs beside the map's tables would exceed the configuration's
+  // memory limit.
   MarkovLocalization(const LocalizationMap& map, GlobalMethod method);
 
   // Fuses one reading. Returns false, leaving the belief unchanged, when every candidate's
