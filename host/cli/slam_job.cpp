@@ -46,6 +46,10 @@ void write_trajectory(const std::filesystem::path& file,
 nlohmann::json relation_json(const slam::RelationError& e) {
   return {{"matched", e.matched},
           {"unmatched", e.unmatched},
+          {"off", e.off},
+          {"off_fraction", e.matched > 0 ? double(e.off) / double(e.matched) : 0.0},
+          {"trans_median", e.trans_median},
+          {"rot_median_deg", e.rot_median_deg},
           {"trans_mean", e.trans_mean},
           {"trans_std", e.trans_std},
           {"rot_mean_deg", e.rot_mean_deg},
@@ -54,6 +58,50 @@ nlohmann::json relation_json(const slam::RelationError& e) {
           {"trans_sq_std", e.trans_sq_std},
           {"rot_sq_mean", e.rot_sq_mean},
           {"rot_sq_std", e.rot_sq_std}};
+}
+
+// The worst stretches of the SLAM trajectory (at most 10), as metrics.json lists them, with
+// their times also in seconds from the log's first scan (t0).
+nlohmann::json stretches_json(std::span<const slam::RelationStretch> stretches, double t0) {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t i = 0; i < std::min<std::size_t>(stretches.size(), 10); ++i) {
+    const slam::RelationStretch& s = stretches[i];
+    out.push_back({{"t1_first", s.t1_first},
+                   {"t1_last", s.t1_last},
+                   {"t2_min", s.t2_min},
+                   {"t2_max", s.t2_max},
+                   {"t1_from_start", {s.t1_first - t0, s.t1_last - t0}},
+                   {"t2_from_start", {s.t2_min - t0, s.t2_max - t0}},
+                   {"relations", s.relations},
+                   {"off", s.off},
+                   {"trans_max", s.trans_max},
+                   {"rot_max_deg", s.rot_max_deg}});
+  }
+  return out;
+}
+
+// DIR/relations.csv: each relation with the SLAM's error and the raw odometry's (empty where a
+// relation matched no pose), in the relations file's order.
+void write_relation_errors(const std::filesystem::path& file,
+                           std::span<const slam::RelationResult> slam_results,
+                           std::span<const slam::RelationResult> odometry_results) {
+  io::write_file_atomically(file, [&](std::ostream& out) {
+    out << "t1,t2,trans_error_m,rot_error_deg,off,odometry_trans_error_m,odometry_rot_error_deg\n";
+    const auto errors = [&out](const slam::RelationResult& r) {
+      if (r.matched)
+        out << io::format_number(r.trans_error) << ',' << io::format_number(r.rot_error_deg);
+      else
+        out << ',';
+    };
+    for (std::size_t i = 0; i < slam_results.size(); ++i) {
+      const slam::RelationResult& r = slam_results[i];
+      out << io::format_number(r.relation.t1) << ',' << io::format_number(r.relation.t2) << ',';
+      errors(r);
+      out << ',' << (r.off() ? 1 : 0) << ',';
+      errors(odometry_results[i]);
+      out << '\n';
+    }
+  });
 }
 
 // The poses in time order (score_relations needs it; a log's scans normally are).
@@ -152,9 +200,11 @@ std::string slam_summary(const SlamJobResult& r) {
 
 std::string relation_summary(const std::string& what, const slam::RelationError& e) {
   return io::printed(
-      "%s: %zu matched, %zu unmatched; translation %.3g ± %.3g m, rotation %.3g ± %.3g deg",
-      what.c_str(), e.matched, e.unmatched, e.trans_mean, e.trans_std, e.rot_mean_deg,
-      e.rot_std_deg);
+      "%s: %zu matched, %zu unmatched; translation %.3g ± %.3g m (median %.3g), rotation %.3g ± "
+      "%.3g deg (median %.3g); %zu off by more than %g m or %g deg",
+      what.c_str(), e.matched, e.unmatched, e.trans_mean, e.trans_std, e.trans_median,
+      e.rot_mean_deg, e.rot_std_deg, e.rot_median_deg, e.off, slam::kRelationOffMetres,
+      slam::kRelationOffDegrees);
 }
 
 // The map's cells, estimated from the odometry before SLAM runs, against --max-memory: a log
@@ -236,10 +286,12 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
   // The relations are read and scored on the raw odometry before SLAM runs: the SLAM trajectory
   // has the same times (one pose a scan), so a file for another log is refused at once.
   std::vector<slam::Relation> relations;
+  std::vector<slam::RelationResult> odometry_results, slam_results;
   if (o.relations) {
     const std::vector<io::RelationRecord> records = io::read_relations(*o.relations);
     relations = io::relations_of(records);
-    r.odometry_relations = slam::score_relations(by_time(slam::scan_poses(log)), relations);
+    odometry_results = slam::relation_errors(by_time(slam::scan_poses(log)), relations);
+    r.odometry_relations = slam::summarize_relations(odometry_results);
     if (r.odometry_relations->matched == 0)
       throw io::InputError(
           *o.relations, records.front().line, "t1",
@@ -274,7 +326,10 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
       throw io::InputError(*o.reference, 0, "t", std::string(e.what()) + " in " + o.log.string());
     }
   }
-  if (o.relations) r.relations = slam::score_relations(by_time(r.run.trajectory), relations);
+  if (o.relations) {
+    slam_results = slam::relation_errors(by_time(r.run.trajectory), relations);
+    r.relations = slam::summarize_relations(slam_results);
+  }
 
   r.metrics = {{"log", o.log.string()},
                {"engine", engine_name(o.engine)},
@@ -325,10 +380,13 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     r.metrics["relations_file"] = o.relations->string();
     r.metrics["relations"] = relation_json(*r.relations);
     r.metrics["odometry_relations"] = relation_json(*r.odometry_relations);
+    r.metrics["relation_stretches"] =
+        stretches_json(slam::worst_stretches(slam_results), log.scans.front().t);
   }
 
   std::filesystem::create_directories(o.out);
   write_trajectory(o.out / "trajectory.txt", r.run.trajectory);
+  if (o.relations) write_relation_errors(o.out / "relations.csv", slam_results, odometry_results);
   const core::ProbabilityGrid map = slam::slam_map_probabilities(r.run);
   io::write_ros_map(o.out / "map.yaml", io::RosMap{map});
   io::RgbImage image = io::render_probability_grid(map);

@@ -773,7 +773,7 @@ std::string json_object(const std::string& text, const std::string& key) {
 
 // --relations: relations between pairs of kSlamLog's scan times (100, 101, 102 s), one 5 ms off
 // (within the benchmark's 0.01 s) and one to a time no scan has, scored for the SLAM and the
-// raw odometry; --tum: one line a scan.
+// raw odometry, each relation's error in relations.csv; --tum: one line a scan.
 TEST_F(Cli, SlamScoresBenchmarkRelationsAndWritesATumTrajectory) {
   const fs::path relations = write("s.relations",
                                    "# t1 t2 x y z roll pitch yaw\n"
@@ -799,12 +799,31 @@ TEST_F(Cli, SlamScoresBenchmarkRelationsAndWritesATumTrajectory) {
     ASSERT_FALSE(object.empty()) << key << " in " << metrics;
     EXPECT_NE(object.find("\"matched\": 3,"), std::string::npos) << object;
     EXPECT_NE(object.find("\"unmatched\": 1"), std::string::npos) << object;
-    for (const char* field : {"trans_mean", "trans_std", "rot_mean_deg", "rot_std_deg",
-                              "trans_sq_mean", "trans_sq_std", "rot_sq_mean", "rot_sq_std"})
+    for (const char* field :
+         {"trans_mean", "trans_std", "rot_mean_deg", "rot_std_deg", "trans_sq_mean", "trans_sq_std",
+          "rot_sq_mean", "rot_sq_std", "trans_median", "rot_median_deg", "off", "off_fraction"})
       EXPECT_NE(object.find("\"" + std::string(field) + "\": "), std::string::npos)
           << field << " in " << object;
   }
   EXPECT_NE(metrics.find("\"relations_file\": \"" + relations.string() + "\""), std::string::npos);
+  EXPECT_NE(metrics.find("\"relation_stretches\": ["), std::string::npos) << metrics;
+  // relations.csv: each relation in the file's order with the SLAM's and the odometry's errors,
+  // empty where it matched no scan; its matched rows' mean is the metrics' trans_mean.
+  std::istringstream csv(slurp(dir_ / "out" / "relations.csv"));
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(csv, line);) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[0],
+            "t1,t2,trans_error_m,rot_error_deg,off,odometry_trans_error_m,odometry_rot_error_deg");
+  EXPECT_EQ(rows[1].rfind("100,101,", 0), 0u) << rows[1];
+  EXPECT_EQ(rows[2].rfind("101,102.005,", 0), 0u) << rows[2];
+  EXPECT_EQ(rows[4], "100,103,,,0,,") << rows[4];
+  double sum = 0.0;
+  for (std::size_t i = 1; i <= 3; ++i) sum += std::stod(rows[i].substr(rows[i].find(',', 4) + 1));
+  const std::string slam_object = json_object(metrics, "relations");
+  const std::size_t at = slam_object.find("\"trans_mean\": ");
+  ASSERT_NE(at, std::string::npos) << slam_object;
+  EXPECT_NEAR(std::stod(slam_object.substr(at + 14)), sum / 3.0, 1e-12);
   EXPECT_NE(metrics.find("\"reordered_scans\": 0"), std::string::npos) << metrics;
   EXPECT_NE(metrics.find("\"peak_memory_bytes\": "), std::string::npos) << metrics;
   EXPECT_NE(metrics.find("\"real_time_factor\": "), std::string::npos) << metrics;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -167,3 +168,86 @@ TEST(Relations, AnUnsortedTrajectoryOrABadToleranceIsRefused) {
 }
 
 }  // namespace
+
+// A straight trajectory one metre a second, and relations (i, i+1) whose true motion is
+// (1 + e_i, 0, 0): relation i's translational error is exactly |e_i|.
+struct LineCase {
+  std::vector<TimedPose> trajectory;
+  std::vector<Relation> relations;
+};
+
+LineCase line_with_errors(const std::vector<double>& errors) {
+  LineCase c;
+  for (std::size_t i = 0; i <= errors.size(); ++i)
+    c.trajectory.push_back({double(i), {double(i), 0, 0}});
+  for (std::size_t i = 0; i < errors.size(); ++i)
+    c.relations.push_back({double(i), double(i + 1), {1.0 + errors[i], 0, 0}});
+  return c;
+}
+
+TEST(Relations, MediansAndTheOffCountFollowEachRelationsError) {
+  const std::vector<double> errors = {0.05, -0.4, 0.01, 0.31, -0.02, 0.29, 0.2};
+  const LineCase c = line_with_errors(errors);
+  const std::vector<intgrid::slam::RelationResult> results =
+      intgrid::slam::relation_errors(c.trajectory, c.relations);
+  ASSERT_EQ(results.size(), errors.size());
+  std::vector<double> magnitudes;
+  std::size_t off = 0;
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    EXPECT_TRUE(results[i].matched);
+    EXPECT_NEAR(results[i].trans_error, std::abs(errors[i]), 1e-12);
+    EXPECT_EQ(results[i].off(), std::abs(errors[i]) > 0.3) << i;
+    magnitudes.push_back(std::abs(errors[i]));
+    off += std::abs(errors[i]) > 0.3 ? 1 : 0;
+  }
+  std::sort(magnitudes.begin(), magnitudes.end());
+  const RelationError e = score_relations(c.trajectory, c.relations);
+  EXPECT_EQ(e.off, off);
+  EXPECT_EQ(e.off, 2u);  // 0.4 and 0.31, not 0.29
+  EXPECT_NEAR(e.trans_median, magnitudes[(magnitudes.size() - 1) / 2], 1e-12);
+  // The summary of the per-relation results is the score.
+  const RelationError s = intgrid::slam::summarize_relations(results);
+  EXPECT_EQ(s.matched, e.matched);
+  EXPECT_EQ(s.trans_mean, e.trans_mean);
+  EXPECT_EQ(s.rot_sq_std, e.rot_sq_std);
+}
+
+TEST(Relations, ARotationPastFiveDegreesIsOffAndUnmatchedRelationsAreNever) {
+  const std::vector<TimedPose> trajectory = {{0.0, {0, 0, 0}}, {1.0, {1, 0, 0}}};
+  const std::vector<Relation> relations = {
+      {0.0, 1.0, {1, 0, 6.0 / kDeg}}, {0.0, 1.0, {1, 0, 4.0 / kDeg}}, {0.0, 9.0, {100, 0, 0}}};
+  const auto results = intgrid::slam::relation_errors(trajectory, relations);
+  EXPECT_TRUE(results[0].off());
+  EXPECT_FALSE(results[1].off());
+  EXPECT_FALSE(results[2].matched);
+  EXPECT_FALSE(results[2].off());
+  const RelationError e = score_relations(trajectory, relations);
+  EXPECT_EQ(e.off, 1u);
+  EXPECT_NEAR(e.rot_median_deg, 4.0, 1e-9);  // the lower median of {4, 6}
+}
+
+TEST(Relations, StretchesRunAcrossAtMostTwoGoodRelationsAndTheWorstComesFirst) {
+  // By t1: good, OFF 0.5, good, good, OFF 0.4, good, good, good, OFF 0.8, OFF 0.35, good.
+  const std::vector<double> errors = {0.0, 0.5, 0.0, 0.0, 0.4, 0.0, 0.0, 0.0, 0.8, 0.35, 0.0};
+  LineCase c = line_with_errors(errors);
+  // The file's order is not the time order: the stretches are found in t1 order.
+  std::swap(c.relations[0], c.relations[9]);
+  std::swap(c.relations[3], c.relations[5]);
+  const auto stretches =
+      intgrid::slam::worst_stretches(intgrid::slam::relation_errors(c.trajectory, c.relations));
+  ASSERT_EQ(stretches.size(), 2u);
+  // Both hold two off relations; the one with the larger error comes first.
+  EXPECT_EQ(stretches[0].off, 2u);
+  EXPECT_EQ(stretches[0].relations, 2u);
+  EXPECT_EQ(stretches[0].t1_first, 8.0);
+  EXPECT_EQ(stretches[0].t1_last, 9.0);
+  EXPECT_EQ(stretches[0].t2_max, 10.0);
+  EXPECT_NEAR(stretches[0].trans_max, 0.8, 1e-12);
+  EXPECT_EQ(stretches[1].off, 2u);
+  EXPECT_EQ(stretches[1].relations, 4u);  // OFF, good, good, OFF
+  EXPECT_EQ(stretches[1].t1_first, 1.0);
+  EXPECT_EQ(stretches[1].t1_last, 4.0);
+  EXPECT_EQ(stretches[1].t2_min, 2.0);
+  EXPECT_EQ(stretches[1].t2_max, 5.0);
+  EXPECT_NEAR(stretches[1].trans_max, 0.5, 1e-12);
+}
