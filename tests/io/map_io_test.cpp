@@ -10,6 +10,7 @@
 #include <cmath>
 #include <csetjmp>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -327,6 +328,44 @@ TEST(RosMap, WriteThenReadKeepsGeometryAndCellsWithinHalfAStep) {
   }
   EXPECT_THAT(test::read_bytes(dir / "out.yaml"), HasSubstr("image: out.pgm\n"));
   EXPECT_EQ(dir.entry_count(), 2u) << "out.yaml and out.pgm, no temporary files";
+}
+
+// CRC-32 (IEEE 802.3, reflected, as zlib and PNG compute it), bit by bit: the test's own
+// formulation of the checksum intgrid's YAML carries.
+std::uint32_t bitwise_crc32(std::string_view bytes) {
+  std::uint32_t crc = 0xffffffffu;
+  for (const char c : bytes) {
+    crc ^= static_cast<std::uint8_t>(c);
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+// A run stopped after renaming the new image and before the YAML leaves the old YAML beside the
+// new image: the YAML's image_crc32 (line 2) no longer matches, and the pair is refused instead
+// of read as a wrong map.
+TEST(RosMap, AnImageThatIsNotTheOneWrittenWithItsYamlIsRefused) {
+  ASSERT_EQ(bitwise_crc32("123456789"), 0xcbf43926u);  // the CRC-32 check value
+  const TempDir dir;
+  RosMap first = gradient_map();
+  write_ros_map(dir / "m.yaml", first);
+  const std::string first_yaml = test::read_bytes(dir / "m.yaml");
+  char crc[9];
+  std::snprintf(crc, sizeof crc, "%08x", bitwise_crc32(test::read_bytes(dir / "m.pgm")));
+  EXPECT_THAT(first_yaml, HasSubstr("image: m.pgm\nimage_crc32: " + std::string(crc) + "\n"));
+  EXPECT_NO_THROW(read_ros_map(dir / "m.yaml"));
+
+  RosMap second = first;
+  for (double& p : second.grid.cells) p = 1.0 - p;
+  write_ros_map(dir / "m.yaml", second);
+  dir.write("m.yaml", first_yaml);  // the old YAML back
+  const std::string what =
+      expect_input_error([&] { read_ros_map(dir / "m.yaml"); }, dir / "m.yaml", 2, "image_crc32");
+  EXPECT_THAT(what, HasSubstr("is not the CRC-32 of " + (dir / "m.pgm").string()));
+
+  dir.write("m.yaml", map_yaml("0.05", "[0, 0, 0]", "image_crc32: 12345g78\n"));
+  dir.write("map.pgm", small_p5());
+  expect_input_error([&] { read_ros_map(dir / "m.yaml"); }, dir / "m.yaml", 7, "image_crc32");
 }
 
 TEST(RosMap, WritePixelIsRoundedInverseProbability) {

@@ -2,11 +2,15 @@
 
 #include <png.h>
 #include <yaml-cpp/yaml.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <csetjmp>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <new>
@@ -93,6 +97,8 @@ class MapYaml {
 
 struct MapDescription {
   fs::path image;
+  std::optional<std::uint32_t> image_crc32;  // the image's CRC-32, as intgrid writes it
+  int image_crc32_line = 0;
   double resolution = 0.0;
   double origin_x = 0.0;
   double origin_y = 0.0;
@@ -144,6 +150,38 @@ MapMode read_mode(const MapYaml& yaml) {
   yaml.fail(mode, "mode", "unknown mode " + quote_input(name) + " (trinary, scale or raw)");
 }
 
+// `image_crc32: 1a2b3c4d`, which intgrid writes beside `image` (map_server reads no such key):
+// the CRC-32 of the image's bytes, so that an image that does not belong to the YAML (a run
+// killed between writing the two, or a file replaced since) is refused instead of read as a
+// wrong map.
+void read_image_crc32(const MapYaml& yaml, MapDescription& map) {
+  const YAML::Node node = yaml.optional("image_crc32");
+  if (!node) return;
+  const std::string text = yaml.text(node, "image_crc32");
+  std::uint32_t crc = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), crc, 16);
+  if (text.size() != 8 || error != std::errc() || end != text.data() + text.size())
+    yaml.fail(node, "image_crc32", "must be 8 hexadecimal digits, got " + quote_input(text));
+  map.image_crc32 = crc;
+  map.image_crc32_line = static_cast<int>(node.Mark().line) + 1;
+}
+
+std::uint32_t crc32_of(std::string_view bytes) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  for (std::size_t at = 0; at < bytes.size();) {
+    const std::size_t n = std::min<std::size_t>(bytes.size() - at, 1u << 30);
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(bytes.data() + at), static_cast<uInt>(n));
+    at += n;
+  }
+  return static_cast<std::uint32_t>(crc);
+}
+
+std::string crc32_text(std::uint32_t crc) {
+  char text[9];
+  std::snprintf(text, sizeof text, "%08x", crc);
+  return text;
+}
+
 MapDescription read_map_description(const fs::path& file) {
   const MapYaml yaml(file);
   MapDescription map;
@@ -170,15 +208,18 @@ MapDescription read_map_description(const fs::path& file) {
     yaml.fail(yaml.required(problem->first), problem->first, problem->second);
   }
   map.mode = read_mode(yaml);
+  read_image_crc32(yaml, map);
   return map;
 }
 
-std::string map_yaml_text(const std::string& image_name, const RosMap& map) {
+std::string map_yaml_text(const std::string& image_name, std::uint32_t image_crc32,
+                          const RosMap& map) {
   const core::GridGeometry& geometry = map.grid.geometry;
   YAML::Emitter out;
   // Numbers go in as shortest round-trip text: the emitter's own double output loses digits.
   out << YAML::BeginMap;
   out << YAML::Key << "image" << YAML::Value << image_name;
+  out << YAML::Key << "image_crc32" << YAML::Value << crc32_text(image_crc32);
   out << YAML::Key << "resolution" << YAML::Value << format_number(geometry.resolution);
   out << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginSeq
       << format_number(geometry.origin_x) << format_number(geometry.origin_y) << "0"
@@ -483,8 +524,15 @@ MapImage read_png(const fs::path& file, std::string_view data) {
 }
 
 // A PNG by its signature, whatever the file's name; anything else must be a PGM.
-MapImage read_map_image(const fs::path& file) {
+MapImage read_map_image(const fs::path& file, const fs::path& yaml_file,
+                        const MapDescription& map) {
   const std::string data = read_input_file(file);
+  if (map.image_crc32 && crc32_of(data) != *map.image_crc32)
+    throw InputError(yaml_file, map.image_crc32_line, "image_crc32",
+                     crc32_text(*map.image_crc32) + " is not the CRC-32 of " + file.string() +
+                         " (" + crc32_text(crc32_of(data)) +
+                         "): the image is not the one written with this YAML (a run stopped "
+                         "between writing the two, or the image replaced since)");
   return has_png_signature(data) ? read_png(file, data) : read_pgm(file, data);
 }
 
@@ -594,7 +642,7 @@ std::uint8_t probability_to_pixel(double p, bool negate) {
 
 RosMap read_ros_map(const fs::path& yaml) {
   const MapDescription description = read_map_description(yaml);
-  const MapImage image = read_map_image(description.image);
+  const MapImage image = read_map_image(description.image, yaml, description);
   const core::GridGeometry geometry{image.width, image.height, description.resolution,
                                     description.origin_x, description.origin_y};
   RosMap map;
@@ -619,8 +667,11 @@ void write_ros_map(const fs::path& yaml, const RosMap& map) {
   check_writable(yaml, map);
   fs::path image = yaml;
   image.replace_extension(".pgm");
-  write_file_atomically(image, pgm_bytes(map.grid, map.negate));
-  write_file_atomically(yaml, map_yaml_text(image.filename().string(), map));
+  // The image first, then the YAML naming it with its CRC-32: a run stopped between the two
+  // leaves the old YAML beside a new image, which read_ros_map then refuses.
+  const std::string pgm = pgm_bytes(map.grid, map.negate);
+  write_file_atomically(image, pgm);
+  write_file_atomically(yaml, map_yaml_text(image.filename().string(), crc32_of(pgm), map));
 }
 
 }  // namespace intgrid::io
