@@ -134,6 +134,41 @@ TEST(IntgridLog, PoseAndTimeMustBeFinite) {
   expect_input_error([&] { read_intgrid_log(infinite_time); }, infinite_time, 2, "t");
 }
 
+// Values past the readers' plausibility limits are refused naming their field; values at a
+// limit are read. Scan line: n angle0 dangle maxrange r_0..r_2 x y theta sx sy stheta t.
+TEST(IntgridLog, ImplausiblePosesMountsRangesAndAnglesAreRefused) {
+  const TempDir dir;
+  const auto line = [](const std::string& angle0, const std::string& max_range,
+                       const std::string& x, const std::string& sx) {
+    return scan_line_with("3 " + angle0 + " 0.1 " + max_range + " 1 2 3 " + x + " 0 0 " + sx +
+                          " 0 0 100.5");
+  };
+  struct Case {
+    std::string text, field;
+  };
+  for (const Case& c : {Case{line("-1.5", "80", "1e300", "0"), "x"},
+                        Case{line("-1.5", "80", "-1000000.5", "0"), "x"},
+                        Case{line("-1.5", "80", "0", "6.4e38"), "sx"},
+                        Case{line("-1.5", "80", "0", "100.01"), "sx"},
+                        Case{line("-1.5", "10000.5", "0", "0"), "maxrange"},
+                        Case{line("7", "80", "0", "0"), "angle0"},
+                        Case{std::string(kScanLine) + "ODOM 2e6 0 0 101\n", "x"}}) {
+    SCOPED_TRACE(c.text);
+    const auto file = dir.write("implausible.log", c.text);
+    const std::size_t line_number = c.text.find("ODOM") == std::string::npos ? 1 : 2;
+    const std::string message =
+        expect_input_error([&] { read_intgrid_log(file); }, file, line_number, c.field);
+    EXPECT_THAT(message, HasSubstr("past the plausible"));
+  }
+  const auto at_limits =
+      dir.write("limits.log", line("-6.283185307179586", "10000", "-1000000", "100"));
+  const Log log = read_intgrid_log(at_limits);
+  ASSERT_EQ(log.scans.size(), 1u);
+  EXPECT_EQ(log.scans[0].robot.x, -1e6);
+  EXPECT_EQ(log.scans[0].sensor_mount.x, 100.0);
+  EXPECT_EQ(log.scans[0].max_range, 1e4);
+}
+
 TEST(IntgridLog, UnknownRecordTypeIsAnError) {
   const TempDir dir;
   const auto file = dir.write("unknown.log", std::string(kScanLine) + "LASER 1 2 3\n");
@@ -531,6 +566,25 @@ TEST(CarmenLog, ConstantLaserOffsetIsTheMountEvenAgainstTheParam) {
   ASSERT_EQ(log.scans.size(), 2u);
   for (const Scan& scan : log.scans) expect_near_pose(scan.sensor_mount, mount);
   EXPECT_EQ(log.scans[1].robot, b);
+}
+
+// A laser pose 6.4e38 m from the odometry in every record would be the mount: refused, as are a
+// PARAM offset and a maximum range past their limits.
+TEST(CarmenLog, ImplausibleMountsAndRangesAreRefused) {
+  const TempDir dir;
+  const Pose2 a{1.0, 2.0, 3.0}, b{-4.0, 0.5, -1.0};
+  const Pose2 far{150.0, 0.0, 0.0};
+  const auto far_laser = dir.write(
+      "far.clf", flaser_line(10.0, compose(a, far), a) + flaser_line(10.1, compose(b, far), b));
+  const std::string message =
+      expect_input_error([&] { read_log(far_laser); }, far_laser, 0, "laser pose");
+  EXPECT_THAT(message, HasSubstr("150 m from its robot pose"));
+  const auto offset = dir.write(
+      "offset.clf", "PARAM robot_frontlaser_side_offset 1e9 nohost 0\n" + flaser_line(10.0, a, a));
+  expect_input_error([&] { read_log(offset); }, offset, 1, "param_value");
+  const auto range = dir.write(
+      "range.clf", "PARAM robot_front_laser_max 1e5 nohost 0\n" + flaser_line(10.0, a, a));
+  expect_input_error([&] { read_log(range); }, range, 1, "param_value");
 }
 
 TEST(CarmenLog, ChangingLaserOffsetFallsBackToTheParamsOrZero) {

@@ -91,10 +91,32 @@ class RecordFields {
     return value;
   }
 
-  core::Pose2 next_pose(std::string_view x, std::string_view y, std::string_view theta) {
+  // A finite number of magnitude at most `limit` (what the limit is: "metres from the log's
+  // origin").
+  double next_within(const FieldName& field, double limit, const char* what) {
+    const double value = next_finite(field);
+    if (!(std::abs(value) <= limit))
+      fail(field,
+           format_number(value) + " is past the plausible " + format_number(limit) + " " + what);
+    return value;
+  }
+
+  double next_max_range(const FieldName& field) {
+    const double value = next_positive(field);
+    if (!(value <= kMaxRangeLimitMetres))
+      fail(field, format_number(value) + " m is past the plausible " +
+                      format_number(kMaxRangeLimitMetres) + " m of a range sensor");
+    return value;
+  }
+
+  // A pose: x and y within `limit` metres, theta finite.
+  core::Pose2 next_pose(std::string_view x, std::string_view y, std::string_view theta,
+                        double limit = kMaxPositionMetres) {
+    const char* what = limit == kMaxPositionMetres ? "metres from the log's origin"
+                                                   : "metres from the robot's reference point";
     core::Pose2 pose;
-    pose.x = next_finite({x});
-    pose.y = next_finite({y});
+    pose.x = next_within({x}, limit, what);
+    pose.y = next_within({y}, limit, what);
     pose.theta = next_finite({theta});
     return pose;
   }
@@ -170,12 +192,12 @@ void require_scans(const fs::path& file, const core::Log& log, std::string_view 
 core::Scan read_intgrid_scan(RecordFields& fields) {
   core::Scan scan;
   const std::size_t count = fields.next_beam_count({"n"});
-  scan.angle0 = fields.next_finite({"angle0"});
-  scan.dangle = fields.next_finite({"dangle"});
-  scan.max_range = fields.next_positive({"maxrange"});
+  scan.angle0 = fields.next_within({"angle0"}, kMaxScanAngleRadians, "radians");
+  scan.dangle = fields.next_within({"dangle"}, kMaxScanAngleRadians, "radians");
+  scan.max_range = fields.next_max_range({"maxrange"});
   scan.ranges = fields.next_ranges(count);
   scan.robot = fields.next_pose("x", "y", "theta");
-  scan.sensor_mount = fields.next_pose("sx", "sy", "stheta");
+  scan.sensor_mount = fields.next_pose("sx", "sy", "stheta", kMaxMountMetres);
   scan.t = fields.next_finite({"t"});
   fields.expect_end();
   return scan;
@@ -250,11 +272,13 @@ bool is_front_laser_max_param(std::string_view name) {
 void read_carmen_param(RecordFields& fields, CarmenParams& params) {
   const std::string_view name = fields.next_token({"param_name"});
   if (is_front_laser_max_param(name)) {
-    params.front_laser_max = fields.next_positive({"param_value"});
+    params.front_laser_max = fields.next_max_range({"param_value"});
   } else if (name == "robot_frontlaser_offset") {
-    params.offset = fields.next_finite({"param_value"});
+    params.offset = fields.next_within({"param_value"}, kMaxMountMetres,
+                                       "metres from the robot's reference point");
   } else if (name == "robot_frontlaser_side_offset") {
-    params.side_offset = fields.next_finite({"param_value"});
+    params.side_offset = fields.next_within({"param_value"}, kMaxMountMetres,
+                                            "metres from the robot's reference point");
   } else if (name == "robot_frontlaser_angular_offset") {
     params.angular_offset = fields.next_finite({"param_value"});
   }
@@ -324,10 +348,10 @@ CarmenLaser read_robotlaser(RecordFields& fields) {
   record.flaser = false;
   core::Scan& scan = record.scan;
   fields.next_number({"laser_type"});
-  scan.angle0 = fields.next_finite({"start_angle"});
+  scan.angle0 = fields.next_within({"start_angle"}, kMaxScanAngleRadians, "radians");
   const double field_of_view = fields.next_positive({"field_of_view"});
   scan.dangle = fields.next_positive({"angular_resolution"});
-  scan.max_range = fields.next_positive({"maximum_range"});
+  scan.max_range = fields.next_max_range({"maximum_range"});
   fields.next_number({"accuracy"});
   fields.next_number({"remission_mode"});
   const std::size_t count = fields.next_beam_count({"num_readings"});
@@ -458,6 +482,12 @@ core::Log parse_carmen_log(const fs::path& file, std::string_view text,
       : params.front_laser_max ? *params.front_laser_max
                                : flaser_saturation_value(lasers).value_or(kCarmenDefaultMaxRange);
   const core::Pose2 mount = carmen_mount(lasers, params);
+  if (!(std::hypot(mount.x, mount.y) <= kMaxMountMetres))
+    throw InputError(file, 0, "laser pose",
+                     "every laser record puts the laser " +
+                         printed("%.4g", std::hypot(mount.x, mount.y)) +
+                         " m from its robot pose, past the plausible " +
+                         format_number(kMaxMountMetres) + " m of a sensor mount");
   log.scans.reserve(lasers.size());
   for (CarmenLaser& record : lasers) {
     if (record.flaser) record.scan.max_range = flaser_max_range;

@@ -16,6 +16,17 @@ namespace intgrid::io {
 // Beam counts above this are taken for a corrupt line rather than a sensor.
 inline constexpr std::size_t kMaxBeamsPerScan = 100000;
 
+// Plausibility limits of the readers: a value past one is taken for a corrupt or absurd log
+// (refused naming file, line and field) rather than passed to the algorithms, where a mount of
+// 6.4e38 m turned into a grid size that does not fit an int. Each is far past any robot's:
+// poses within 1000 km of the log's origin, a sensor within 100 m of the robot's reference
+// point, a maximum range up to 10 km (laser scanners reach a few hundred metres), scan angles
+// within one turn either way.
+inline constexpr double kMaxPositionMetres = 1e6;
+inline constexpr double kMaxMountMetres = 100.0;
+inline constexpr double kMaxRangeLimitMetres = 1e4;
+inline constexpr double kMaxScanAngleRadians = 6.283185307179586;
+
 // The nominal maximum range of the SICK LMS lasers of the CARMEN data sets, for FLASER records
 // of a log that states none and shows no saturation value (see read_carmen_log).
 inline constexpr double kCarmenDefaultMaxRange = 80.0;
