@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <ostream>
@@ -73,6 +75,30 @@ TEST(AtomicFile, UncommittedFileIsDiscarded) {
     file.stream() << "never committed";
   }
   EXPECT_EQ(dir.entry_count(), 0u);
+}
+
+// A run killed while writing leaves NAME.tmp.<pid>.<n>: the next write of NAME removes it once
+// that process is gone, and keeps a live process's (another run writing the same output) and
+// other outputs' leftovers.
+TEST(AtomicFile, TheNextWriteRemovesWhatAKilledWriterLeft) {
+  const TempDir dir;
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) ::_exit(0);
+  ASSERT_EQ(::waitpid(child, nullptr, 0), child);  // a process that no longer exists
+  const std::string dead = std::to_string(child), live = std::to_string(::getppid());
+  dir.write("out.txt.tmp." + dead + ".0", "half");
+  dir.write("out.txt.tmp." + dead + ".17", "half");
+  dir.write("out.txt.tmp." + live + ".0", "being written");
+  dir.write("other.txt.tmp." + dead + ".0", "another output's");
+  dir.write("out.txt.tmp.notapid", "not ours");
+  write_file_atomically(dir / "out.txt", "done\n");
+  EXPECT_EQ(test::read_bytes(dir / "out.txt"), "done\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / ("out.txt.tmp." + dead + ".0")));
+  EXPECT_FALSE(std::filesystem::exists(dir / ("out.txt.tmp." + dead + ".17")));
+  EXPECT_TRUE(std::filesystem::exists(dir / ("out.txt.tmp." + live + ".0")));
+  EXPECT_TRUE(std::filesystem::exists(dir / ("other.txt.tmp." + dead + ".0")));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out.txt.tmp.notapid"));
 }
 
 TEST(AtomicFile, MissingDirectoryIsAnErrorNamingThePath) {

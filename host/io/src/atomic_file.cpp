@@ -1,11 +1,13 @@
 #include "intgrid/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <stdexcept>
 #include <streambuf>
@@ -73,10 +75,36 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& target) {
   return temporary;
 }
 
+// Removes the temporary files of target left by writers that were killed before they could:
+// "NAME.tmp.<pid>.<n>" whose process no longer exists. A live process's are kept (another run
+// may be writing the same output); a dead writer's pid taken by a new process keeps its file
+// until that process ends.
+void remove_leftovers_of_dead_writers(const std::filesystem::path& target) {
+  const std::string prefix = target.filename().string() + ".tmp.";
+  const std::filesystem::path directory =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  std::error_code error;
+  std::filesystem::directory_iterator entries(directory, error);
+  if (error) return;  // the open below reports a directory that cannot be written
+  for (const std::filesystem::directory_entry& entry : entries) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with(prefix)) continue;
+    const char* first = name.data() + prefix.size();
+    const char* last = name.data() + name.size();
+    long long pid = 0;
+    const auto [end, parsed] = std::from_chars(first, last, pid);
+    if (parsed != std::errc() || end == last || *end != '.' || pid <= 0 || pid == ::getpid())
+      continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH)
+      std::filesystem::remove(entry.path(), error);
+  }
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(std::filesystem::path target)
     : target_(std::move(target)), temporary_(temporary_path_for(target_)), out_(nullptr) {
+  remove_leftovers_of_dead_writers(target_);
   fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd_ < 0) throw_write_error(target_, errno);
   buffer_ = std::make_unique<FileStreamBuffer>(fd_);

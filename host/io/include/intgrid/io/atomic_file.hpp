@@ -15,8 +15,9 @@ class FileStreamBuffer;
 
 class AtomicFile {
  public:
-  // Creates "NAME.tmp.<pid>.<n>" beside target. Throws std::runtime_error naming target if it
-  // cannot be created (e.g. the directory does not exist).
+  // Creates "NAME.tmp.<pid>.<n>" beside target, after removing those of NAME that writers
+  // killed before they could left (their process no longer exists). Throws std::runtime_error
+  // naming target if it cannot be created (e.g. the directory does not exist).
   explicit AtomicFile(std::filesystem::path target);
   // Removes the temporary file unless commit() succeeded.
   ~AtomicFile();
