@@ -3,7 +3,8 @@
 #   setup.sh [host]  the host library, the command and their tests (the demo needs only these),
 #                    and ccache, which scripts/build.sh compiles through
 #   setup.sh full    also the benchmarks, the hardware toolchain (SystemC, Verilator, Yosys, z3,
-#                    nextpnr-ice40), the embedded one (arm-none-eabi, QEMU) and Python (pybind11)
+#                    nextpnr-ice40), the embedded one (arm-none-eabi, QEMU), Python (pybind11)
+#                    and clang with libFuzzer (the preset fuzz)
 set -euo pipefail
 group="${1:-host}"
 packages=(
@@ -20,6 +21,7 @@ case "$group" in
       libsystemc-dev verilator yosys nextpnr-ice40 z3
       gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib qemu-system-arm
       python3-dev pybind11-dev python3-numpy python3-pytest
+      clang libclang-rt-14-dev
     )
     ;;
   *) echo "setup: unknown group '$group' (host or full)" >&2; exit 2 ;;

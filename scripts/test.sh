@@ -5,6 +5,8 @@
 #                   segments and real-log SLAM runs; short segments of them run instead) and
 #                   without what has nothing to sanitize (CMakePresets.json, preset asan)
 #   test.sh quick   the inner loop: the default preset (host parts) and the label unit alone
+#   test.sh fuzz    the readers' libFuzzer targets (preset fuzz, clang), 20 s each; full runs
+#                   them too, after its own tests
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-full}"
@@ -12,6 +14,15 @@ case "$preset" in
   quick)
     bash scripts/build.sh default
     ctest --preset default -L '^unit$' -j "$(nproc)"
+    ;;
+  fuzz)
+    bash scripts/build.sh fuzz intgrid_fuzz_targets
+    ctest --preset fuzz -j "$(nproc)"
+    ;;
+  full)
+    bash scripts/build.sh full
+    ctest --preset full -j "$(nproc)"
+    bash "$0" fuzz
     ;;
   *)
     bash scripts/build.sh "$preset"

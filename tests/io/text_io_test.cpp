@@ -40,6 +40,16 @@ TEST(InputError, LineZeroIsLeftOut) {
   EXPECT_STREQ(error.what(), "map.yaml: file: cannot open: No such file or directory");
 }
 
+// Whoever wrote the message (yaml-cpp's carry the input's raw bytes): one line, control bytes
+// as \xNN, cut past 400 bytes (a message found by fuzzing the map reader broke the line).
+TEST(InputError, TheMessageIsOnePrintableBoundedLine) {
+  const InputError error("m.yaml", 4, "yaml", "unknown escape character: \n\x1b[2J");
+  EXPECT_STREQ(error.what(), "m.yaml:4: yaml: unknown escape character: \\x0a\\x1b[2J");
+  EXPECT_EQ(error.message(), "unknown escape character: \\x0a\\x1b[2J");
+  const InputError long_one("m.yaml", 1, "yaml", std::string(5000, 'a'));
+  EXPECT_EQ(long_one.message(), std::string(400, 'a') + "...");
+}
+
 TEST(ParseNumber, AcceptsPlainNanInfinityAndPlusSign) {
   EXPECT_EQ(parse("1.25"), 1.25);
   EXPECT_EQ(parse("-3e-2"), -0.03);

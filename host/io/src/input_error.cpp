@@ -1,9 +1,34 @@
 #include "intgrid/io/input_error.hpp"
 
+#include <string_view>
 #include <utility>
 
 namespace intgrid::io {
 namespace {
+
+// At most this many bytes of a message: room for a sentence and a quoted value, not for a
+// library's message that embeds a damaged file's bytes.
+constexpr std::size_t kMaxMessageBytes = 400;
+
+// The message on one line of printable text, whoever wrote it: control bytes (a library's
+// message may carry the input's raw newlines or escapes) as \xNN, cut with "..." past
+// kMaxMessageBytes.
+std::string one_line(std::string_view message) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (const char c : message) {
+    if (out.size() >= kMaxMessageBytes) return out + "...";
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      out += "\\x";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
 
 std::string describe(const std::filesystem::path& file, std::size_t line, const std::string& field,
                      const std::string& message) {
@@ -43,10 +68,10 @@ std::string quote_input(std::string_view text, std::size_t max_chars) {
 
 InputError::InputError(std::filesystem::path file, std::size_t line, std::string field,
                        std::string message)
-    : std::runtime_error(describe(file, line, field, message)),
+    : std::runtime_error(describe(file, line, field, one_line(message))),
       file_(std::move(file)),
       line_(line),
       field_(std::move(field)),
-      message_(std::move(message)) {}
+      message_(one_line(message)) {}
 
 }  // namespace intgrid::io

@@ -13,7 +13,8 @@ namespace intgrid::io {
 class InputError : public std::runtime_error {
  public:
   // line is 1-based; 0 means the problem is not on one line (e.g. a missing file).
-  // what() is "FILE:LINE: FIELD: MESSAGE", or "FILE: FIELD: MESSAGE" when line is 0.
+  // what() is "FILE:LINE: FIELD: MESSAGE", or "FILE: FIELD: MESSAGE" when line is 0; MESSAGE is
+  // kept to one line (control bytes as \xNN) of at most about 400 bytes.
   InputError(std::filesystem::path file, std::size_t line, std::string field, std::string message);
 
   const std::filesystem::path& file() const noexcept { return file_; }
