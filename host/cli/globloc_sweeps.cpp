@@ -311,7 +311,10 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
         maps.emplace_back(sigma, std::make_unique<localization::LocalizationMap>(
                                      map.grid, map.occupied_thresh, map.free_thresh, config));
       } catch (const std::invalid_argument& e) {
-        if (std::string_view(e.what()).starts_with("pose_res"))
+        // The options' refusals (a pose cell too fine for the map, a pose grid above
+        // --max-memory) name the option; what is left is the map's.
+        const std::string_view what = e.what();
+        if (what.starts_with("pose_res") || what.starts_with("memory_limit"))
           rethrow_naming_flags(e, global_loc_flags());
         throw io::InputError(o.map, 0, "image", e.what());
       }

@@ -1332,6 +1332,9 @@ TEST_F(Cli, EveryBadInputExitsTwoNamingTheFlagOrTheFile) {
       {"figure fusion --frob", "--frob", "figure fusion"},
       {"figure slam-sweeps --frob", "--frob", "figure slam-sweeps"},
       {sweeps + " --trials 0", "--trials", "figure globloc-sweeps"},
+      // A pose grid above the limit (was an error on the map's image).
+      {sweeps + " --headings 4096 --max-memory 1", "--max-memory", "figure globloc-sweeps"},
+      {map + " --cell 0.05 --max-memory 0.5", "--max-memory", "map"},
       {sweeps + " --threads -1", "--threads", "figure globloc-sweeps"},
       {sweeps + " --seed 1.5", "--seed", "figure globloc-sweeps"},
       {sweeps + " --sweeps speed", "--sweeps", "figure globloc-sweeps"},
