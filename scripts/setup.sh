@@ -11,7 +11,7 @@ packages=(
   build-essential cmake pkg-config ccache
   libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libpng-dev libeigen3-dev
-  gnuplot-nox
+  gnuplot-nox strace
 )
 case "$group" in
   host) ;;
