@@ -158,19 +158,26 @@ const ProbabilityGrids& probability_grids() {
   return grids;
 }
 
-void BM_FuseGrids_Int8Indices(benchmark::State& state) {
+// Times fuse(a, b, out) over the two index grids into a third: two grids read, one written.
+template <class Fuse>
+void time_int8_grids(benchmark::State& state, Fuse fuse) {
   const IndexGrids& grids = index_grids();
   std::vector<std::int8_t> out(kFuseCells);
   for (auto _ : state) {
-    fuse_indices<std::int8_t>(grids.a, grids.b, out, kFuseMaxIndex);
+    fuse(grids.a, grids.b, out);
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
   const auto cells = static_cast<std::int64_t>(kFuseCells);
   state.SetItemsProcessed(state.iterations() * cells);
-  // Two grids read, one written.
   state.SetBytesProcessed(state.iterations() * cells * 3 *
                           static_cast<std::int64_t>(sizeof(std::int8_t)));
+}
+
+void BM_FuseGrids_Int8Indices(benchmark::State& state) {
+  time_int8_grids(state, [](const auto& a, const auto& b, std::vector<std::int8_t>& out) {
+    fuse_indices<std::int8_t>(a, b, out, kFuseMaxIndex);
+  });
 }
 BENCHMARK(BM_FuseGrids_Int8Indices)->Unit(benchmark::kMillisecond);
 
@@ -178,20 +185,9 @@ BENCHMARK(BM_FuseGrids_Int8Indices)->Unit(benchmark::kMillisecond);
 // an element-wise OR that the compiler vectorizes fully, so that its time is memory's; fusion
 // at this time is at the machine's memory bandwidth (issue: fusion within 80% of it).
 void BM_FuseGrids_MemoryReference(benchmark::State& state) {
-  const IndexGrids& grids = index_grids();
-  std::vector<std::int8_t> out(kFuseCells);
-  for (auto _ : state) {
-    const std::int8_t* a = grids.a.data();
-    const std::int8_t* b = grids.b.data();
-    std::int8_t* o = out.data();
-    for (std::size_t i = 0; i < kFuseCells; ++i) o[i] = static_cast<std::int8_t>(a[i] | b[i]);
-    benchmark::DoNotOptimize(out.data());
-    benchmark::ClobberMemory();
-  }
-  const auto cells = static_cast<std::int64_t>(kFuseCells);
-  state.SetItemsProcessed(state.iterations() * cells);
-  state.SetBytesProcessed(state.iterations() * cells * 3 *
-                          static_cast<std::int64_t>(sizeof(std::int8_t)));
+  time_int8_grids(state, [](const auto& a, const auto& b, std::vector<std::int8_t>& out) {
+    for (std::size_t i = 0; i < kFuseCells; ++i) out[i] = static_cast<std::int8_t>(a[i] | b[i]);
+  });
 }
 BENCHMARK(BM_FuseGrids_MemoryReference)->Unit(benchmark::kMillisecond);
 
