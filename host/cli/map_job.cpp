@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -17,6 +16,7 @@
 #include "intgrid/io/input_error.hpp"
 #include "intgrid/io/log_io.hpp"
 #include "intgrid/io/map_io.hpp"
+#include "intgrid/io/text_io.hpp"
 
 namespace intgrid::cli {
 namespace {
@@ -82,11 +82,7 @@ void require_memory_for(const core::Log& log, const core::GridGeometry& geometry
   const double ism_cells = std::ceil((longest + 8.0 * o.model.sigma(longest)) / o.resolution);
   const double ism_bytes =
       ism_cells * (sizeof(double) + static_cast<double>(millimetres.size()) * index_bytes);
-  const auto metres = [](double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g m", v);
-    return std::string(text);
-  };
+  const auto metres = [](double v) { return io::printed("%.3g m", v); };
   require_memory(ism_bytes, o.max_memory_bytes, o.model.k_d * longest > 1.0 ? "--k-d" : "--sigma",
                  "the ISM of the log's longest reading (" + metres(longest) +
                      ", spread over 8 sigma = " + metres(8.0 * o.model.sigma(longest)) + ") in " +

@@ -230,9 +230,8 @@ void require_memory_for(const core::Log& log, const SlamJobOptions& o) {
     } catch (const std::invalid_argument& e) {
       // The configuration was checked: what is left is the map's size.
       bad_option("--cell", "a map of " + metres(o.grid_config.cell) +
-                               " m cells around the first "
-                               "pose of " +
-                               o.log.string() + ", whose odometry reaches " + metres(reach) +
+                               " m cells around the first pose of " + o.log.string() +
+                               ", whose odometry reaches " + metres(reach) +
                                " m from it: " + e.what());
     }
     cell = o.grid_config.cell;

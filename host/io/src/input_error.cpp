@@ -10,22 +10,26 @@ namespace {
 // library's message that embeds a damaged file's bytes.
 constexpr std::size_t kMaxMessageBytes = 400;
 
+// Appends byte as \xNN.
+void append_hex_escape(std::string& out, unsigned char byte) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  out += "\\x";
+  out += kHex[byte >> 4];
+  out += kHex[byte & 0xf];
+}
+
 // The message on one line of printable text, whoever wrote it: control bytes (a library's
 // message may carry the input's raw newlines or escapes) as \xNN, cut with "..." past
 // kMaxMessageBytes.
 std::string one_line(std::string_view message) {
-  static constexpr char kHex[] = "0123456789abcdef";
   std::string out;
   for (const char c : message) {
     if (out.size() >= kMaxMessageBytes) return out + "...";
     const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f) {
-      out += "\\x";
-      out += kHex[byte >> 4];
-      out += kHex[byte & 0xf];
-    } else {
+    if (byte < 0x20 || byte == 0x7f)
+      append_hex_escape(out, byte);
+    else
       out += c;
-    }
   }
   return out;
 }
@@ -47,7 +51,6 @@ std::string describe(const std::filesystem::path& file, std::size_t line, const 
 }  // namespace
 
 std::string quote_input(std::string_view text, std::size_t max_chars) {
-  static constexpr char kHex[] = "0123456789abcdef";
   std::string quoted = "\"";
   for (std::size_t i = 0; i < text.size(); ++i) {
     if (i == max_chars) {
@@ -58,9 +61,7 @@ std::string quote_input(std::string_view text, std::size_t max_chars) {
     if (byte >= 0x20 && byte < 0x7f && byte != '"' && byte != '\\') {
       quoted += static_cast<char>(byte);
     } else {
-      quoted += "\\x";
-      quoted += kHex[byte >> 4];
-      quoted += kHex[byte & 0xf];
+      append_hex_escape(quoted, byte);
     }
   }
   return quoted + "\"";

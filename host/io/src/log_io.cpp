@@ -109,16 +109,29 @@ class RecordFields {
     return value;
   }
 
-  // A pose: x and y within `limit` metres, theta finite.
-  core::Pose2 next_pose(std::string_view x, std::string_view y, std::string_view theta,
-                        double limit = kMaxPositionMetres) {
-    const char* what = limit == kMaxPositionMetres ? "metres from the log's origin"
-                                                   : "metres from the robot's reference point";
+  // A position of the robot or the sensor in the log's frame, and an offset of the sensor from
+  // the robot's reference point.
+  double next_position(const FieldName& field) {
+    return next_within(field, kMaxPositionMetres, "metres from the log's origin");
+  }
+  double next_mount_offset(const FieldName& field) {
+    return next_within(field, kMaxMountMetres, "metres from the robot's reference point");
+  }
+
+  core::Pose2 next_pose(std::string_view x, std::string_view y, std::string_view theta) {
     core::Pose2 pose;
-    pose.x = next_within({x}, limit, what);
-    pose.y = next_within({y}, limit, what);
+    pose.x = next_position({x});
+    pose.y = next_position({y});
     pose.theta = next_finite({theta});
     return pose;
+  }
+
+  core::Pose2 next_mount(std::string_view x, std::string_view y, std::string_view theta) {
+    core::Pose2 mount;
+    mount.x = next_mount_offset({x});
+    mount.y = next_mount_offset({y});
+    mount.theta = next_finite({theta});
+    return mount;
   }
 
   // A count of 0 to kMaxBeamsPerScan values.
@@ -197,7 +210,7 @@ core::Scan read_intgrid_scan(RecordFields& fields) {
   scan.max_range = fields.next_max_range({"maxrange"});
   scan.ranges = fields.next_ranges(count);
   scan.robot = fields.next_pose("x", "y", "theta");
-  scan.sensor_mount = fields.next_pose("sx", "sy", "stheta", kMaxMountMetres);
+  scan.sensor_mount = fields.next_mount("sx", "sy", "stheta");
   scan.t = fields.next_finite({"t"});
   fields.expect_end();
   return scan;
@@ -274,11 +287,9 @@ void read_carmen_param(RecordFields& fields, CarmenParams& params) {
   if (is_front_laser_max_param(name)) {
     params.front_laser_max = fields.next_max_range({"param_value"});
   } else if (name == "robot_frontlaser_offset") {
-    params.offset = fields.next_within({"param_value"}, kMaxMountMetres,
-                                       "metres from the robot's reference point");
+    params.offset = fields.next_mount_offset({"param_value"});
   } else if (name == "robot_frontlaser_side_offset") {
-    params.side_offset = fields.next_within({"param_value"}, kMaxMountMetres,
-                                            "metres from the robot's reference point");
+    params.side_offset = fields.next_mount_offset({"param_value"});
   } else if (name == "robot_frontlaser_angular_offset") {
     params.angular_offset = fields.next_finite({"param_value"});
   }

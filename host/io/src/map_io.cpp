@@ -527,12 +527,15 @@ MapImage read_png(const fs::path& file, std::string_view data) {
 MapImage read_map_image(const fs::path& file, const fs::path& yaml_file,
                         const MapDescription& map) {
   const std::string data = read_input_file(file);
-  if (map.image_crc32 && crc32_of(data) != *map.image_crc32)
-    throw InputError(yaml_file, map.image_crc32_line, "image_crc32",
-                     crc32_text(*map.image_crc32) + " is not the CRC-32 of " + file.string() +
-                         " (" + crc32_text(crc32_of(data)) +
-                         "): the image is not the one written with this YAML (a run stopped "
-                         "between writing the two, or the image replaced since)");
+  if (map.image_crc32) {
+    const std::uint32_t crc = crc32_of(data);
+    if (crc != *map.image_crc32)
+      throw InputError(yaml_file, map.image_crc32_line, "image_crc32",
+                       crc32_text(*map.image_crc32) + " is not the CRC-32 of " + file.string() +
+                           " (" + crc32_text(crc) +
+                           "): the image is not the one written with this YAML (a run stopped "
+                           "between writing the two, or the image replaced since)");
+  }
   return has_png_signature(data) ? read_png(file, data) : read_pgm(file, data);
 }
 
