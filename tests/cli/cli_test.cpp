@@ -1,10 +1,8 @@
 // The intgrid command end to end: outputs, and one clear error line with exit
 // status 2 for every bad input.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -19,25 +17,17 @@
 #include <utility>
 #include <vector>
 
+#include "command_run.hpp"
 #include "data_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status;
-  std::string output;  // stdout and stderr
-};
+using CliRun = intgrid::test::CommandRun;
 
 CliRun run(const std::string& arguments) {
-  const std::string command = std::string(INTGRID_CLI) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return intgrid::test::run_command(std::string(INTGRID_CLI) + " " + arguments);
 }
 
 class Cli : public ::testing::Test {
@@ -888,13 +878,8 @@ TEST_F(Cli, SlamProgressOnATerminalShowsTheTimeLeft) {
   const std::string slam = std::string(INTGRID_CLI) + " slam --log " +
                            write("s.log", kSlamLog).string() + " --out " + (dir_ / "out").string() +
                            " --max-range 8 > /dev/null";
-  FILE* pipe = popen(("script -qec '" + slam + "' /dev/null 2>&1").c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) GTEST_SKIP() << "script failed: " << output;
+  const auto [status, output] = intgrid::test::run_command("script -qec '" + slam + "' /dev/null");
+  if (status != 0) GTEST_SKIP() << "script failed: " << output;
   EXPECT_NE(output.find("SLAM (integer): 1/3 (33%), ETA "), std::string::npos) << output;
   EXPECT_NE(output.find("SLAM (integer): 3/3 (100%) in "), std::string::npos) << output;
 }

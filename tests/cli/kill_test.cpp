@@ -4,15 +4,13 @@
 // refused naming image_crc32; never a mix read as a map. The next complete run removes the
 // temporary files the killed ones left.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "command_run.hpp"
 #include "intgrid/io/input_error.hpp"
 #include "intgrid/io/map_io.hpp"
 
@@ -22,12 +20,7 @@ namespace {
 
 // The exit status, or -1 when killed by a signal.
 int run(const std::string& command) {
-  FILE* pipe = popen((command + " > /dev/null 2>&1").c_str(), "r");
-  std::array<char, 256> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) {
-  }
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return intgrid::test::run_command(command).status;
 }
 
 void write(const fs::path& file, const std::string& text) {
