@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "cli/log_input.hpp"
 #include "cli/options.hpp"
+#include "cli/output_folder_option.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/figures/bitmap_font.hpp"
 #include "intgrid/io/atomic_file.hpp"
@@ -334,6 +335,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   }
   const auto [first, last] = scan_range(o.scans, log.scans.size(), o.log);
   check_map(map, o.map, o.config);
+  io::OutputFolder out = open_output_folder(o.out);
 
   // The selected scans' readings, before any work on the map.
   struct Job {
@@ -572,10 +574,10 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
     r.metrics["reference"] = ref;
   }
 
-  std::filesystem::create_directories(o.out);
-  write_poses(o.out / "poses.txt", r.scans, o.method, o.track > 0);
-  write_pose_grid_png(o.out / "pose_grid.png", *lmap, first_scores, map, r.scans.front());
-  io::write_file_atomically(o.out / "metrics.json", r.metrics.dump(2) + "\n");
+  write_poses(out.file("poses.txt"), r.scans, o.method, o.track > 0);
+  write_pose_grid_png(out.file("pose_grid.png"), *lmap, first_scores, map, r.scans.front());
+  io::write_file_atomically(out.file("metrics.json"), r.metrics.dump(2) + "\n");
+  out.commit();
   return r;
 }
 

@@ -9,6 +9,7 @@
 
 #include "cli/log_input.hpp"
 #include "cli/options.hpp"
+#include "cli/output_folder_option.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/core/scan_insertion.hpp"
@@ -128,16 +129,17 @@ MapJobResult run_map_job(const MapJobOptions& o) {
   const core::Log& log = input.log;
   const core::GridGeometry geometry = geometry_for(log, o);
   require_memory_for(log, geometry, o);
+  io::OutputFolder out = open_output_folder(o.out);
   MapJobResult result = naming_flags(map_flags(o), [&] { return map_log(log, geometry, o); });
   result.skipped_records = std::move(input.skipped);
 
-  std::filesystem::create_directories(o.out);
-  io::write_ros_map(o.out / "map.yaml", io::RosMap{result.map});
+  io::write_ros_map(out.file("map.yaml"), io::RosMap{result.map});
   io::RgbImage image = io::render_probability_grid(result.map);
   std::vector<core::Pose2> path;
   for (const core::Scan& scan : log.scans) path.push_back(scan.sensor_pose());
   io::draw_polyline_world(image, geometry, path, {220, 30, 30});
-  io::write_png(o.out / "map.png", image);
+  io::write_png(out.file("map.png"), image);
+  out.commit();
   return result;
 }
 

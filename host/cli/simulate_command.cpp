@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/output_folder_option.hpp"
 #include "intgrid/io/image_io.hpp"
 #include "intgrid/io/input_error.hpp"
 #include "intgrid/io/log_io.hpp"
@@ -212,17 +213,15 @@ void run_simulate(const SimulateArgs& a) {
   const simulation::Simulation sim = naming_flags(
       simulation_flags(), [&] { return simulation::simulate(world.grid, config, seed); });
 
-  std::filesystem::create_directories(a.out);
-  const std::filesystem::path log = a.out / "sim.log", truth = a.out / "truth.log",
-                              yaml = a.out / "world.yaml", pgm = a.out / "world.pgm",
-                              png = a.out / "world.png";
-  io::write_log(log, sim.log);
-  io::write_log(truth, sim.truth);
+  io::OutputFolder out = open_output_folder(a.out);
+  io::write_log(out.file("sim.log"), sim.log);
+  io::write_log(out.file("truth.log"), sim.truth);
   io::RosMap written = world;
   written.grid = sim.world;
   written.negate = false;
-  io::write_ros_map(yaml, written);
-  write_picture(png, sim);
+  io::write_ros_map(out.file("world.yaml"), written);
+  write_picture(out.file("world.png"), sim);
+  out.commit();
 
   std::size_t readings = 0, no_return = 0;
   for (const core::Scan& s : sim.log.scans) {
@@ -242,11 +241,11 @@ void run_simulate(const SimulateArgs& a) {
               {"odometry_final_error_m",
                std::hypot(last_odometry.x - last_true.x, last_odometry.y - last_true.y)},
               {"files",
-               {{"log", log.string()},
-                {"truth", truth.string()},
-                {"map", yaml.string()},
-                {"map_image", pgm.string()},
-                {"picture", png.string()}}}});
+               {{"log", (a.out / "sim.log").string()},
+                {"truth", (a.out / "truth.log").string()},
+                {"map", (a.out / "world.yaml").string()},
+                {"map_image", (a.out / "world.pgm").string()},
+                {"picture", (a.out / "world.png").string()}}}});
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/log_input.hpp"
+#include "cli/output_folder_option.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/figures/figure_layout.hpp"
 #include "intgrid/io/atomic_file.hpp"
@@ -300,6 +301,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                       io::format_number(log.scans.front().t).c_str(),
                       io::format_number(log.scans.back().t).c_str()));
   }
+  io::OutputFolder out = open_output_folder(o.out);
   const auto start = std::chrono::steady_clock::now();
   {
     TerminalProgress progress(o.arithmetic == core::Arithmetic::integer ? "SLAM (integer)"
@@ -383,11 +385,10 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
         stretches_json(slam::worst_stretches(slam_results), log.scans.front().t);
   }
 
-  std::filesystem::create_directories(o.out);
-  write_trajectory(o.out / "trajectory.txt", r.run.trajectory);
-  if (o.relations) write_relation_errors(o.out / "relations.csv", slam_results, odometry_results);
+  write_trajectory(out.file("trajectory.txt"), r.run.trajectory);
+  if (o.relations) write_relation_errors(out.file("relations.csv"), slam_results, odometry_results);
   const core::ProbabilityGrid map = slam::slam_map_probabilities(r.run);
-  io::write_ros_map(o.out / "map.yaml", io::RosMap{map});
+  io::write_ros_map(out.file("map.yaml"), io::RosMap{map});
   io::RgbImage image = io::render_probability_grid(map);
   io::draw_polyline_world(image, map.geometry, positions(slam::scan_poses(log)), {150, 150, 150});
   if (reference)
@@ -411,12 +412,13 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
   const std::string title =
       "SLAM map of " + o.log.filename().string() + " (" + engine_name(o.engine) + " engine, " +
       (o.arithmetic == core::Arithmetic::integer ? "integer" : "double") + ")";
-  io::write_png(o.out / "map.png",
+  io::write_png(out.file("map.png"),
                 figures::compose_figure(title, {{{"occupancy", std::move(image)}}},
                                         io::ProbabilityScale::grey, caption));
-  if (o.tum) io::write_tum_trajectory(*o.tum, r.run.trajectory);
   r.metrics["peak_memory_bytes"] = peak_memory_bytes();  // all but metrics.json done
-  io::write_file_atomically(o.out / "metrics.json", r.metrics.dump(2) + "\n");
+  io::write_file_atomically(out.file("metrics.json"), r.metrics.dump(2) + "\n");
+  out.commit();
+  if (o.tum) io::write_tum_trajectory(*o.tum, r.run.trajectory);
   return r;
 }
 

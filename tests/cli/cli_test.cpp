@@ -1254,6 +1254,8 @@ TEST_F(Cli, EveryBadInputExitsTwoNamingTheFlagOrTheFile) {
   const std::string simulate = "simulate --out " + out;
   const std::string globloc =
       "globloc --map " + room.string() + " --log " + log.string() + " --out " + out;
+  const fs::path held = dir_ / "held";
+  fs::create_directories(held / "inner");
   struct Case {
     std::string arguments;
     std::string named;  // the flag or the file the message names
@@ -1350,6 +1352,11 @@ TEST_F(Cli, EveryBadInputExitsTwoNamingTheFlagOrTheFile) {
       {simulate + " --frob", "--frob", "simulate"},
       // slam: the generic errors only
       {"slam --log " + log.string() + " --out " + out + " --frob 1", "--frob", "slam"},
+      // --out: a file, a folder holding folders (which a run could not replace as one)
+      {"map --cell 0.1 --log " + log.string() + " --out " + log.string(), "--out", "map"},
+      {"map --cell 0.1 --log " + log.string() + " --out " + held.string(), "--out", "map"},
+      {"globloc --map " + room.string() + " --log " + log.string() + " --out " + room.string(),
+       "--out", "globloc"},
       {"slam --log " + missing + " --out " + out, missing, ""},
       // globloc
       {globloc + " --pose-cell -1", "--pose-cell", "globloc"},

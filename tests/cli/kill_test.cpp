@@ -1,18 +1,18 @@
-// `intgrid map` killed at each of its output renames (strace's fault injection sends SIGKILL as
-// the Nth rename is entered, so renames 1..N-1 happened and N did not) leaves its output folder
-// as a reader may find it: the map pair reads as the previous run's map or as this run's, or is
-// refused naming image_crc32; never a mix read as a map. The next complete run removes the
-// temporary files the killed ones left.
+// `intgrid map` and `intgrid slam` killed at each of their renames (strace's fault injection
+// sends SIGKILL as the Nth call of a rename is entered, so calls 1..N-1 happened and N did not)
+// leave their output folder as a reader may find it: every file of the previous run's set, or every
+// file of this run's, never a mix (a new map.pgm under an old map.yaml, a new trajectory.txt
+// beside an old metrics.json). The next complete run removes what the killed ones left.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
-#include <vector>
 
 #include "command_run.hpp"
-#include "intgrid/io/input_error.hpp"
-#include "intgrid/io/map_io.hpp"
+#include "data_dir.hpp"
 
 namespace fs = std::filesystem;
 
@@ -37,59 +37,91 @@ std::string log_text(double range) {
   return text;
 }
 
-// The same map: geometry, thresholds and every cell.
-bool same(const intgrid::io::RosMap& a, const intgrid::io::RosMap& b) {
-  const intgrid::core::GridGeometry &g = a.grid.geometry, &h = b.grid.geometry;
-  return g.width == h.width && g.height == h.height && g.resolution == h.resolution &&
-         g.origin_x == h.origin_x && g.origin_y == h.origin_y && a.negate == b.negate &&
-         a.occupied_thresh == b.occupied_thresh && a.free_thresh == b.free_thresh &&
-         a.grid.cells == b.grid.cells;
+// Lines [first, last) of the bundled raw log: a few of its scans.
+std::string bundled_scans(std::size_t first, std::size_t last) {
+  std::ifstream in(fs::path(intgrid::test::data_dir()) / "malaga_telecom_loop.log");
+  std::string line, text;
+  for (std::size_t n = 0; n < last && std::getline(in, line); ++n)
+    if (n >= first) text += line + "\n";
+  return text;
 }
 
-TEST(KilledRun, AReaderSeesTheOldMapTheNewOneOrARefusalNeverAMix) {
-  if (run("strace -V") != 0)
-    GTEST_SKIP() << "strace is not installed (scripts/setup.sh installs it)";
-  const fs::path dir = fs::temp_directory_path() / "intgrid_killed_run";
+// A folder's files by name. metrics.json holds times that differ from run to run: of it only
+// the line naming the log is kept, which tells the runs apart.
+std::map<std::string, std::string> contents(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::stringstream bytes;
+    bytes << in.rdbuf();
+    std::string text = bytes.str();
+    if (entry.path().filename() == "metrics.json") {
+      std::istringstream lines(text);
+      std::string line;
+      text.clear();
+      while (std::getline(lines, line))
+        if (line.find("\"log\"") != std::string::npos) text = line;
+    }
+    files[entry.path().filename().string()] = text;
+  }
+  return files;
+}
+
+// Runs `command --log old.log --out old`, then the same with new.log into new, then kills
+// the new run writing over a copy of old at each of its renames; checks what a reader finds.
+void expect_no_mix(const std::string& name, const std::string& command, const std::string& old_log,
+                   const std::string& new_log) {
+  const fs::path dir = fs::temp_directory_path() / ("intgrid_killed_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
-  write(dir / "old.log", log_text(2.0));
-  write(dir / "new.log", log_text(3.5));
-  const std::string map = std::string(INTGRID_CLI) + " map --cell 0.1 --log ";
-  ASSERT_EQ(run(map + (dir / "old.log").string() + " --out " + (dir / "old").string()), 0);
-  ASSERT_EQ(run(map + (dir / "new.log").string() + " --out " + (dir / "new").string()), 0);
-  const intgrid::io::RosMap old_map = intgrid::io::read_ros_map(dir / "old" / "map.yaml");
-  const intgrid::io::RosMap new_map = intgrid::io::read_ros_map(dir / "new" / "map.yaml");
-  ASSERT_FALSE(same(old_map, new_map));
+  write(dir / "old.log", old_log);
+  write(dir / "new.log", new_log);
+  const std::string prefix = std::string(INTGRID_CLI) + " " + command + " --log ";
+  const std::string new_run = prefix + (dir / "new.log").string() + " --out ";
+  ASSERT_EQ(run(prefix + (dir / "old.log").string() + " --out " + (dir / "old").string()), 0);
+  ASSERT_EQ(run(new_run + (dir / "new").string()), 0);
+  const auto old_set = contents(dir / "old"), new_set = contents(dir / "new");
+  for (const auto& [file, bytes] : old_set)
+    ASSERT_NE(bytes, new_set.at(file)) << file << " must tell the runs apart";
 
+  // strace counts each system call apart: the files are renamed with rename, the folder is
+  // exchanged with renameat2.
   const fs::path out = dir / "out";
-  int killed = 0, refused = 0;
-  for (int n = 1; n < 20; ++n) {
-    SCOPED_TRACE("killed at rename " + std::to_string(n));
-    fs::remove_all(out);
-    fs::copy(dir / "old", out);
-    const int status =
-        run("strace -f -qq -o /dev/null -e trace=rename,renameat,renameat2 -e "
-            "inject=rename,renameat,renameat2:signal=KILL:when=" +
-            std::to_string(n) + " " + map + (dir / "new.log").string() + " --out " + out.string());
-    if (status == 0) break;  // fewer renames than n: the run completed
-    ++killed;
-    try {
-      const intgrid::io::RosMap seen = intgrid::io::read_ros_map(out / "map.yaml");
-      EXPECT_TRUE(same(seen, old_map) || same(seen, new_map));
-    } catch (const intgrid::io::InputError& e) {
-      EXPECT_EQ(e.field(), "image_crc32") << e.what();
-      ++refused;
+  int killed = 0;
+  for (const std::string call : {"rename", "renameat", "renameat2"})
+    for (int n = 1; n < 40; ++n) {
+      SCOPED_TRACE(name + " killed at " + call + " " + std::to_string(n));
+      fs::remove_all(out);
+      fs::copy(dir / "old", out);
+      const int status =
+          run("strace -f -qq -o /dev/null -e trace=" + call + " -e inject=" + call +
+              ":signal=KILL:when=" + std::to_string(n) + " " + new_run + out.string());
+      if (status == 0) break;  // fewer calls than n: the run completed
+      ++killed;
+      const auto seen = contents(out);
+      EXPECT_TRUE(seen == old_set || seen == new_set);
     }
-  }
-  // map.pgm, map.yaml and map.png are each renamed into place: three places to be killed, and
-  // the one between the image and its YAML is refused.
-  EXPECT_GE(killed, 3);
-  EXPECT_EQ(refused, 1);
-  // A complete run then leaves no temporary file of the killed ones.
-  ASSERT_EQ(run(map + (dir / "new.log").string() + " --out " + out.string()), 0);
-  for (const fs::directory_entry& entry : fs::directory_iterator(out))
-    EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos) << entry.path();
+  // Each output file is renamed in the staging folder, then the folder into place.
+  EXPECT_EQ(killed, static_cast<int>(new_set.size()) + 1);
+  // A complete run then leaves nothing of the killed ones.
+  ASSERT_EQ(run(new_run + out.string()), 0);
+  EXPECT_EQ(contents(out), new_set);
+  for (const fs::path& folder : {dir, out})
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+      EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos) << entry.path();
   fs::remove_all(dir);
+}
+
+TEST(KilledRun, AMapReaderSeesTheOldSetOrTheNewOneNeverAMix) {
+  if (run("strace -V") != 0)
+    GTEST_SKIP() << "strace is not installed (scripts/setup.sh installs it)";
+  expect_no_mix("map", "map --cell 0.1", log_text(2.0), log_text(3.5));
+}
+
+TEST(KilledRun, ASlamReaderSeesTheOldSetOrTheNewOneNeverAMix) {
+  if (run("strace -V") != 0)
+    GTEST_SKIP() << "strace is not installed (scripts/setup.sh installs it)";
+  expect_no_mix("slam", "slam --res 0.1", bundled_scans(0, 12), bundled_scans(12, 24));
 }
 
 }  // namespace

@@ -1,13 +1,12 @@
 #include "intgrid/io/atomic_file.hpp"
 
+#include "staging_names.hpp"
+
 #include <fcntl.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <array>
-#include <atomic>
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 #include <stdexcept>
 #include <streambuf>
@@ -65,39 +64,6 @@ namespace {
 
 [[noreturn]] void throw_write_error(const std::filesystem::path& target, int error) {
   throw std::runtime_error("cannot write " + target.string() + ": " + std::strerror(error));
-}
-
-// Unique per process and per call, so concurrent writers of one target never share a file.
-std::filesystem::path temporary_path_for(const std::filesystem::path& target) {
-  static std::atomic<unsigned> counter{0};
-  std::filesystem::path temporary = target;
-  temporary += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  return temporary;
-}
-
-// Removes the temporary files of target left by writers that were killed before they could:
-// "NAME.tmp.<pid>.<n>" whose process no longer exists. A live process's are kept (another run
-// may be writing the same output); a dead writer's pid taken by a new process keeps its file
-// until that process ends.
-void remove_leftovers_of_dead_writers(const std::filesystem::path& target) {
-  const std::string prefix = target.filename().string() + ".tmp.";
-  const std::filesystem::path directory =
-      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  std::error_code error;
-  std::filesystem::directory_iterator entries(directory, error);
-  if (error) return;  // the open below reports a directory that cannot be written
-  for (const std::filesystem::directory_entry& entry : entries) {
-    const std::string name = entry.path().filename().string();
-    if (!name.starts_with(prefix)) continue;
-    const char* first = name.data() + prefix.size();
-    const char* last = name.data() + name.size();
-    long long pid = 0;
-    const auto [end, parsed] = std::from_chars(first, last, pid);
-    if (parsed != std::errc() || end == last || *end != '.' || pid <= 0 || pid == ::getpid())
-      continue;
-    if (::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH)
-      std::filesystem::remove(entry.path(), error);
-  }
 }
 
 }  // namespace
