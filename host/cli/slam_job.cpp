@@ -214,10 +214,11 @@ std::string relation_summary(const std::string& what, const slam::RelationError&
 // the square its setup allocates (15 bytes a cell in either arithmetic, 1 more for the copy the
 // run returns); the submaps engine's, the odometry's bounding box in the first pose's frame
 // grown by the range and the ISM's spread (the final map grows by copying, so twice its cells,
-// and the largest submap is taken as large as the map: 3 grid cells of 1 or 8 bytes, and 1 byte
-// for the map the run returns). Both then write the map: probabilities twice (8 bytes each), the
-// PGM and the image with its figure (7 bytes). What SLAM corrects of the odometry is left out:
-// the estimate is of the size the odometry implies, not a bound.
+// and the largest submap is taken as large as the map: 3 grid cells of 1 or 8 bytes, 1 byte
+// for the map the run returns, and the loop search's cache of max-pooled submaps, each as large
+// as the map, up to its bound: slam::pyramid_cache_bytes). Both then write the map: probabilities
+// twice (8 bytes each), the PGM and the image with its figure (7 bytes). What SLAM corrects of the
+// odometry is left out: the estimate is of the size the odometry implies, not a bound.
 void require_memory_for(const core::Log& log, const SlamJobOptions& o) {
   constexpr double kOutputBytes = 8.0 + 8.0 + 7.0;
   const auto metres = [](double v) { return io::printed("%.4g", v); };
@@ -254,7 +255,8 @@ void require_memory_for(const core::Log& log, const SlamJobOptions& o) {
     cells = std::ceil((x_hi - x_lo + 2.0 * margin) / cell) *
             std::ceil((y_hi - y_lo + 2.0 * margin) / cell);
     const double cell_bytes = o.arithmetic == core::Arithmetic::integer ? 1.0 : 8.0;
-    bytes_per_cell = 3.0 * cell_bytes + 1.0 + kOutputBytes;
+    bytes_per_cell = 3.0 * cell_bytes + 1.0 + kOutputBytes +
+                     slam::pyramid_cache_bytes(c, o.arithmetic, cells) / cells;
     extent =
         "the odometry's " + metres(x_hi - x_lo) + " x " + metres(y_hi - y_lo) + " m and the range";
   }

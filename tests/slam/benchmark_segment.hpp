@@ -21,6 +21,7 @@ namespace intgrid::slam::test {
 struct Segment {
   RelationError slam_int, slam_double, odometry;
   GraphSlamStats stats_int, stats_double;
+  double map_cells_int = 0.0, map_cells_double = 0.0;  // of the map each run returned
 };
 
 // Scans [first, first + scans) of NAME.clf in both arithmetics, and their raw odometry.
@@ -34,13 +35,14 @@ inline Segment run_segment(const std::string& name, std::size_t first, std::size
       io::relations_of(io::read_relations(dir / (name + ".relations")));
   Segment s;
   s.odometry = score_relations(scan_poses(log), relations);
-  s.slam_int = score_relations(
-      run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::integer, &s.stats_int).trajectory,
-      relations);
-  s.slam_double = score_relations(
-      run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::floating, &s.stats_double)
-          .trajectory,
-      relations);
+  const SlamRun integer =
+      run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::integer, &s.stats_int);
+  s.slam_int = score_relations(integer.trajectory, relations);
+  s.map_cells_int = static_cast<double>(integer.map.cells.size());
+  const SlamRun floating =
+      run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::floating, &s.stats_double);
+  s.slam_double = score_relations(floating.trajectory, relations);
+  s.map_cells_double = static_cast<double>(floating.map.cells.size());
   // The figures docs/results.md quotes for the segments.
   std::printf(
       "%s, scans %zu to %zu: odometry %.3f m %.2f deg, integer %.3f m %.2f deg, double %.3f m %.2f "

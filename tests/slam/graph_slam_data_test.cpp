@@ -33,6 +33,13 @@ void expect_every_stage_ran_and_rotation_improved(const Segment& s) {
     EXPECT_GT(stats.loop_closures, 0u);
     EXPECT_GT(stats.optimizations, 0u);
   }
+  // The memory estimate's figure for the loop search's pyramid cache (submaps taken as large as
+  // the map) bounds what the cache held.
+  EXPECT_LE(static_cast<double>(s.stats_int.peak_pyramid_bytes),
+            pyramid_cache_bytes(GraphSlamConfig{}, core::Arithmetic::integer, s.map_cells_int));
+  EXPECT_LE(static_cast<double>(s.stats_double.peak_pyramid_bytes),
+            pyramid_cache_bytes(GraphSlamConfig{}, core::Arithmetic::floating, s.map_cells_double));
+  EXPECT_GT(s.stats_int.peak_pyramid_bytes, 0u);
   for (const RelationError& e : {s.slam_int, s.slam_double}) {
     EXPECT_EQ(e.matched, s.odometry.matched);
     EXPECT_LT(e.rot_mean_deg, s.odometry.rot_mean_deg);

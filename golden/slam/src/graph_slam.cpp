@@ -231,12 +231,11 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
       }
     pyramids.emplace_front(id,
                            MaxPyramid<Cell>(*submaps[id].grid, pyramid_levels(loop_window.cells)));
-    // The least recently used go once the cache passes 12 pyramids or 192 MB (double cells take
-    // eight times the bytes of S_eps ones).
-    constexpr std::size_t kKept = 12, kKeptBytes = std::size_t{192} << 20;
+    // Double cells take eight times the bytes of S_eps ones.
     std::size_t bytes = 0;
     for (const auto& p : pyramids) bytes += p.second.bytes();
-    while (pyramids.size() > 1 && (pyramids.size() > kKept || bytes > kKeptBytes)) {
+    while (pyramids.size() > 1 &&
+           (pyramids.size() > kPyramidCacheSubmaps || bytes > kPyramidCacheBytes)) {
       bytes -= pyramids.back().second.bytes();
       pyramids.pop_back();
     }
@@ -425,6 +424,17 @@ GraphSlam::GraphSlam(const GraphSlamConfig& config, core::Arithmetic arithmetic,
     engine_ = std::make_unique<EngineOf<std::int8_t>>(config, codec, std::move(s));
   else
     engine_ = std::make_unique<EngineOf<LogOdds>>(config, codec, std::move(s));
+}
+
+double pyramid_cache_bytes(const GraphSlamConfig& config, core::Arithmetic arithmetic,
+                           double submap_cells) {
+  const SearchWindow loops = search_window(config.loops.window, config.loops.window_degrees, 0.0,
+                                           0.0, static_cast<std::int32_t>(millimetres(config.cell)),
+                                           core::kAngleUnitsPerTurn / config.headings);
+  const double cell_bytes = arithmetic == core::Arithmetic::integer ? 1.0 : sizeof(LogOdds);
+  const double one = (pyramid_levels(loops.cells) + 1.0) * submap_cells * cell_bytes;
+  return std::min(static_cast<double>(kPyramidCacheSubmaps) * one,
+                  std::max(static_cast<double>(kPyramidCacheBytes), one));
 }
 
 GraphSlam::~GraphSlam() = default;

@@ -102,6 +102,18 @@ struct GraphSlamConfig {
 // Throws std::invalid_argument naming the offending field by its path (`loops.window`).
 void check_graph_slam_config(const GraphSlamConfig& config);
 
+// The loop-closure search keeps the max-pooled copies of the submaps it searched last
+// (MaxPyramid, pyramid_levels(loop window) + 1 levels); the least recently used go once more
+// than kPyramidCacheSubmaps are kept or they pass kPyramidCacheBytes (one is always kept).
+inline constexpr std::size_t kPyramidCacheSubmaps = 12;
+inline constexpr std::size_t kPyramidCacheBytes = std::size_t{192} << 20;
+
+// The most bytes that cache can hold for submaps of submap_cells cells each (an upper figure
+// for a memory estimate: the levels' padding is left out, each level counted at the submap's
+// cells).
+double pyramid_cache_bytes(const GraphSlamConfig& config, core::Arithmetic arithmetic,
+                           double submap_cells);
+
 struct GraphSlamStats {
   std::size_t scans = 0;
   std::size_t nodes = 0;
