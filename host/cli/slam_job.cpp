@@ -276,6 +276,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
   if (o.reference) reference = io::read_log(*o.reference);
   try {
     slam::check_slam_log(log);
+    if (o.engine == SlamEngine::grid) slam::check_one_sensor_geometry(log);
   } catch (const std::invalid_argument& e) {
     throw io::InputError(o.log, 0, "scans", e.what());
   }

@@ -304,6 +304,49 @@ TEST(GraphSlam, TracksASimulatedLoopFarBetterThanOdometryInDouble) {
   tracks_the_loop(core::Arithmetic::floating);
 }
 
+// The loop as an interlaced laser records it: successive scans take every other beam, the even
+// ones (181) and the odd ones (180, half a step further on), and the odd scans list their beams
+// from the last bearing backwards. Each scan states its geometry; an engine that read the odd
+// scans with the even ones' would see them mirrored.
+void tracks_an_interlaced_loop(core::Arithmetic arithmetic) {
+  const SimulatedRun& sim = loop_run();
+  core::Log log = sim.log;
+  for (std::size_t i = 0; i < log.scans.size(); ++i) {
+    core::Scan& s = log.scans[i];
+    const std::vector<double> all = s.ranges;
+    s.ranges.clear();
+    if (i % 2 == 0) {
+      for (std::size_t b = 0; b < all.size(); b += 2) s.ranges.push_back(all[b]);
+      s.dangle *= 2;
+    } else {
+      for (std::size_t b = all.size() - 2;; b -= 2) {
+        s.ranges.push_back(all[b]);
+        if (b < 2) break;
+      }
+      s.angle0 += static_cast<double>(all.size() - 2) * s.dangle;
+      s.dangle *= -2;
+    }
+  }
+  ASSERT_EQ(log.scans[0].ranges.size(), 181u);
+  ASSERT_EQ(log.scans[1].ranges.size(), 180u);
+  GraphSlamStats stats;
+  const SlamRun run = run_graph_slam(log, GraphSlamConfig{}, arithmetic, &stats);
+  const TrajectoryError slam = absolute_trajectory_error(run.trajectory, sim.truth);
+  const TrajectoryError odometry = absolute_trajectory_error(scan_poses(log), sim.truth);
+  std::printf("interlaced loop: ATE %.3f m, odometry %.3f m\n", slam.rmse, odometry.rmse);
+  // The bounds of the 361-beam loop above.
+  EXPECT_LT(slam.rmse, 0.3);
+  EXPECT_LT(slam.rmse, odometry.rmse / 3);
+  EXPECT_GT(stats.loop_closures, 0u);
+}
+
+TEST(GraphSlam, TakesEachScansOwnGeometryInInteger) {
+  tracks_an_interlaced_loop(core::Arithmetic::integer);
+}
+TEST(GraphSlam, TakesEachScansOwnGeometryInDouble) {
+  tracks_an_interlaced_loop(core::Arithmetic::floating);
+}
+
 TEST(GraphSlam, RunsAreBitIdentical) {
   core::Log log = loop_run().log;
   log.scans.resize(150);

@@ -1259,6 +1259,7 @@ Log small_log(int scans, int beams = 36) {
 std::string log_error(const Log& log) {
   try {
     check_slam_log(log);
+    check_one_sensor_geometry(log);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }

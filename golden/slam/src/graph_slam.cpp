@@ -171,7 +171,8 @@ void check_graph_slam_config(const GraphSlamConfig& c) {
 
 struct GraphSlam::Engine {
   virtual ~Engine() = default;
-  virtual void insert(const QuantizedScan& scan, double t) = 0;
+  virtual void insert(const QuantizedScan& scan, std::shared_ptr<const SlamSensor> sensor,
+                      double t) = 0;
   virtual void finish() = 0;
   virtual std::vector<core::Pose2> scan_poses() const = 0;  // SLAM frame
   virtual core::Grid<std::int8_t> map() const = 0;
@@ -186,6 +187,7 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     SlamPose local;
     std::size_t vertex = 0;
     std::vector<std::int32_t> range_mm;
+    std::shared_ptr<const SlamSensor> sensor;  // the geometry its scan stated
   };
   struct SubmapRecord {
     std::size_t vertex = 0;
@@ -243,17 +245,19 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     return pyramids.front().second;
   }
 
-  void insert(const QuantizedScan& scan, double t) override {
+  void insert(const QuantizedScan& scan, std::shared_ptr<const SlamSensor> sensor,
+              double t) override {
     ++stats.scans;
-    const TrackStep step = tracker.track(scan, std::llround(t * 1000.0));
+    const TrackStep step = tracker.track(scan, *sensor, std::llround(t * 1000.0));
     stats.wide_searches += step.wide;
     stats.unmatched_scans += !step.matched;
     for (Submap<Cell>& done : tracker.take_finished()) submaps[done.id].grid = std::move(done.grid);
-    if (step.node) add_node(step, scan);
+    if (step.node) add_node(step, scan, std::move(sensor));
     scans.push_back({nodes.empty() ? static_cast<std::size_t>(-1) : nodes.size() - 1, step.pose});
   }
 
-  void add_node(const TrackStep& step, const QuantizedScan& scan) {
+  void add_node(const TrackStep& step, const QuantizedScan& scan,
+                std::shared_ptr<const SlamSensor> sensor) {
     const core::Pose2 corr = correction();
     const core::Pose2 local = to_pose2(step.pose);
     const auto& g = config.graph;
@@ -263,7 +267,8 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
         submaps.push_back({graph.add_node(core::compose(corr, to_pose2(anchor))), anchor, {}, {}});
         ++stats.submaps;
       }
-    Node node{step.pose, graph.add_node(core::compose(corr, local)), scan.range_mm};
+    Node node{step.pose, graph.add_node(core::compose(corr, local)), scan.range_mm,
+              std::move(sensor)};
     for (const std::size_t id : step.submaps) {
       SubmapRecord& s = submaps[id];
       graph.add_edge({s.vertex, node.vertex, core::relative(to_pose2(s.anchor), local),
@@ -361,10 +366,11 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     grid.cover(-1, -1, 1, 1);
     for (const Node& n : nodes) {
       const SlamPose p = to_slam_pose(graph.poses()[n.vertex]);
+      const SlamSensor& sensor = *n.sensor;
       const auto [mx, my] =
-          rays.rotate(static_cast<std::int32_t>(p.theta), s.sensor.mount_x_mm, s.sensor.mount_y_mm);
+          rays.rotate(static_cast<std::int32_t>(p.theta), sensor.mount_x_mm, sensor.mount_y_mm);
       grid.insert(rays, table, p.x_mm + mx, p.y_mm + my,
-                  static_cast<std::int32_t>(p.theta + s.sensor.mount_theta), s.sensor.bearing,
+                  static_cast<std::int32_t>(p.theta + sensor.mount_theta), sensor.bearing,
                   n.range_mm, s.max_range_mm, s.max_index);
     }
     const double cell = s.cell_mm * 1e-3;
@@ -385,24 +391,12 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
 
 GraphSlam::GraphSlam(const GraphSlamConfig& config, core::Arithmetic arithmetic,
                      const core::Scan& first)
-    : geometry_(first), frame_(first.robot), previous_robot_(first.robot) {
+    : first_t_(first.t), frame_(first.robot), previous_robot_(first.robot) {
   check_graph_slam_config(config);
-  geometry_.ranges.assign(first.ranges.size(), 0.0);
-  const double mount = std::hypot(first.sensor_mount.x, first.sensor_mount.y);
-  if (!std::isfinite(mount) || mount > 100.0 || !std::isfinite(first.sensor_mount.theta))
-    core::fail<std::invalid_argument>("SLAM: the sensor is mounted more than 100 m from the robot");
-  if (first.ranges.empty() || first.ranges.size() > 100000)
-    core::fail<std::invalid_argument>("SLAM: the first scan has " +
-                                      std::to_string(first.ranges.size()) +
-                                      " ranges; SLAM takes 1 to 100000");
+  sensor_for(first, scan_label(1, first.t));
   TrackerSetup s;
   s.cell_mm = static_cast<std::int32_t>(millimetres(config.cell));
   s.max_range_mm = static_cast<std::int32_t>(millimetres(config.sensor.max_range));
-  for (std::size_t i = 0; i < first.ranges.size(); ++i)
-    s.sensor.bearing.push_back(static_cast<std::int32_t>(angle_units(first.bearing(i))));
-  s.sensor.mount_x_mm = static_cast<std::int32_t>(millimetres(first.sensor_mount.x));
-  s.sensor.mount_y_mm = static_cast<std::int32_t>(millimetres(first.sensor_mount.y));
-  s.sensor.mount_theta = static_cast<std::int32_t>(angle_units(first.sensor_mount.theta));
   s.sin_q16 = core::make_sine_table_q16();
   const core::SepsCodec codec = make_codec(config);
   s.max_index = codec.max_index();
@@ -441,15 +435,41 @@ GraphSlam::~GraphSlam() = default;
 GraphSlam::GraphSlam(GraphSlam&&) noexcept = default;
 GraphSlam& GraphSlam::operator=(GraphSlam&&) noexcept = default;
 
+std::shared_ptr<const SlamSensor> GraphSlam::sensor_for(const core::Scan& scan,
+                                                        const std::string& label) {
+  for (auto it = sensors_.begin(); it != sensors_.end(); ++it)
+    if (geometry_difference(scan, it->first) == nullptr) {
+      std::rotate(sensors_.begin(), it, it + 1);
+      return sensors_.front().second;
+    }
+  const double mount = std::hypot(scan.sensor_mount.x, scan.sensor_mount.y);
+  if (!std::isfinite(mount) || mount > 100.0 || !std::isfinite(scan.sensor_mount.theta))
+    core::fail<std::invalid_argument>(label +
+                                      ": the sensor is mounted more than 100 m from the robot");
+  if (scan.ranges.empty() || scan.ranges.size() > 100000)
+    core::fail<std::invalid_argument>(label + " has " + std::to_string(scan.ranges.size()) +
+                                      " ranges; SLAM takes 1 to 100000");
+  auto sensor = std::make_shared<SlamSensor>();
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i)
+    sensor->bearing.push_back(static_cast<std::int32_t>(angle_units(scan.bearing(i))));
+  sensor->mount_x_mm = static_cast<std::int32_t>(millimetres(scan.sensor_mount.x));
+  sensor->mount_y_mm = static_cast<std::int32_t>(millimetres(scan.sensor_mount.y));
+  sensor->mount_theta = static_cast<std::int32_t>(angle_units(scan.sensor_mount.theta));
+  core::Scan key = scan;
+  key.ranges.assign(scan.ranges.size(), 0.0);
+  sensors_.insert(sensors_.begin(), {std::move(key), std::move(sensor)});
+  if (sensors_.size() > kRecentSensors) sensors_.pop_back();
+  return sensors_.front().second;
+}
+
 void GraphSlam::insert(const core::Scan& scan) {
   const std::size_t number = engine_->stats.scans + 1;
-  if (const char* differs = geometry_difference(scan, geometry_))
-    core::fail<std::invalid_argument>(scan_label(number, scan.t) + " has another " + differs +
-                                      " than the first scan; SLAM needs one sensor geometry");
-  const QuantizedScan q = quantize_scan(
-      scan, number > 1 ? &previous_robot_ : nullptr, engine_->config.sensor.max_range,
-      scan_label(number, scan.t), engine_->stats.readings, engine_->stats.unusable_readings);
-  engine_->insert(q, scan.t - geometry_.t);
+  const std::string label = scan_label(number, scan.t);
+  std::shared_ptr<const SlamSensor> sensor = sensor_for(scan, label);
+  const QuantizedScan q =
+      quantize_scan(scan, number > 1 ? &previous_robot_ : nullptr, engine_->config.sensor.max_range,
+                    label, engine_->stats.readings, engine_->stats.unusable_readings);
+  engine_->insert(q, std::move(sensor), scan.t - first_t_);
   previous_robot_ = scan.robot;
   times_.push_back(scan.t);
 }

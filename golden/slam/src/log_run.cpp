@@ -31,16 +31,19 @@ void check_slam_log(const core::Log& log) {
   const core::Scan& first = log.scans.front();
   if (first.ranges.empty()) core::fail<std::invalid_argument>(scan_name(log, 0) + " has no ranges");
   bool moves = !log.odometry.empty();
-  for (std::size_t i = 1; i < log.scans.size(); ++i) {
-    const core::Scan& s = log.scans[i];
-    moves = moves || s.robot != first.robot;
-    if (const char* differs = geometry_difference(s, first))
-      core::fail<std::invalid_argument>(scan_name(log, i) + " has another " + differs +
-                                        " than the first scan; SLAM needs one sensor geometry");
-  }
+  for (const core::Scan& s : log.scans) moves = moves || s.robot != first.robot;
   if (!moves && log.scans.size() > 1)
     core::fail<std::invalid_argument>(
         "the log has no odometry: no ODOM record, and every scan carries the same robot pose");
+}
+
+void check_one_sensor_geometry(const core::Log& log) {
+  for (std::size_t i = 1; i < log.scans.size(); ++i)
+    if (const char* differs = geometry_difference(log.scans[i], log.scans.front()))
+      core::fail<std::invalid_argument>(
+          scan_name(log, i) + " has another " + differs +
+          " than the first scan; the grid engine needs one sensor geometry (the submaps engine "
+          "takes each scan's own)");
 }
 
 std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig& config,
@@ -66,6 +69,7 @@ SlamRun run_slam(const core::Log& log, const SlamConfig& config, core::Arithmeti
                  const core::Progress& progress) {
   check_slam_config(config);
   check_slam_log(log);
+  check_one_sensor_geometry(log);
   ScanSlam slam(config, arithmetic, log.scans.front(), odometry_reach(log.scans));
   SlamRun run;
   for (std::size_t i = 0; i < log.scans.size(); ++i) {

@@ -102,7 +102,8 @@ void ScanSlam::insert(const core::Scan& scan) {
   const std::size_t number = scans() + 1;
   if (const char* differs = geometry_difference(scan, geometry_))
     core::fail<std::invalid_argument>(scan_label(number, scan.t) + " has another " + differs +
-                                      " than the first scan; SLAM needs one sensor geometry");
+                                      " than the first scan; the grid engine needs one sensor "
+                                      "geometry (the submaps engine takes each scan's own)");
   const SlamConfig& config =
       engine_->visit([](const auto& s) -> const SlamConfig& { return s.setup().config; });
   const QuantizedScan q = quantize_scan(scan, number > 1 ? &previous_robot_ : nullptr, config,

@@ -19,7 +19,6 @@ namespace intgrid::slam {
 struct TrackerSetup {
   std::int32_t cell_mm = 50;
   std::int32_t max_range_mm = 30000;
-  SlamSensor sensor;
   std::vector<std::int32_t> sin_q16;
   int max_index = 127;
   SearchWindow narrow, wide;                  // their priors at no motion
@@ -60,7 +59,8 @@ class LocalTracker {
   core::IntegerRays rays() const { return {setup_.sin_q16, setup_.cell_mm}; }
   const ScanPoints& points() const { return points_; }
 
-  TrackStep track(const QuantizedScan& scan, std::int64_t t_ms);
+  // The scan taken at t_ms by a sensor of geometry `sensor` (each scan may state its own).
+  TrackStep track(const QuantizedScan& scan, const SlamSensor& sensor, std::int64_t t_ms);
 
   // Submaps that took all their scans, in order, handed over once.
   std::vector<Submap<Cell>> take_finished() { return std::exchange(finished_, {}); }
@@ -78,7 +78,8 @@ class LocalTracker {
 };
 
 template <class Cell>
-TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, std::int64_t t_ms) {
+TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, const SlamSensor& sensor,
+                                    std::int64_t t_ms) {
   const core::IntegerRays rays = this->rays();
   TrackStep step;
   // Motion: the odometry increment, turned into the local frame.
@@ -88,7 +89,7 @@ TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, std::int64_t t_ms
   pose_ = predicted;
 
   // Localization against the older active submap.
-  points_ = scan_points(rays, setup_.sensor, scan.range_mm, setup_.max_range_mm);
+  points_ = scan_points(rays, sensor, scan.range_mm, setup_.max_range_mm);
   const std::int64_t full = static_cast<std::int64_t>(points_.size()) * setup_.max_index;
   if (!active_.empty() && static_cast<int>(points_.size()) >= setup_.min_hits) {
     const LocalGrid<Cell>& target = active_.front().grid;
@@ -133,11 +134,11 @@ TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, std::int64_t t_ms
     active_.push_back(
         {next_id_++, LocalGrid<Cell>(setup_.cell_mm), {pose_.x_mm, pose_.y_mm, 0}, 0});
   }
-  const auto [sx, sy] = rays.rotate(static_cast<std::int32_t>(pose_.theta),
-                                    setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
-  const auto heading = static_cast<std::int32_t>(pose_.theta + setup_.sensor.mount_theta);
+  const auto [sx, sy] =
+      rays.rotate(static_cast<std::int32_t>(pose_.theta), sensor.mount_x_mm, sensor.mount_y_mm);
+  const auto heading = static_cast<std::int32_t>(pose_.theta + sensor.mount_theta);
   for (Submap<Cell>& s : active_) {
-    s.grid.insert(rays, table_, pose_.x_mm + sx, pose_.y_mm + sy, heading, setup_.sensor.bearing,
+    s.grid.insert(rays, table_, pose_.x_mm + sx, pose_.y_mm + sy, heading, sensor.bearing,
                   scan.range_mm, setup_.max_range_mm, setup_.max_index);
     ++s.insertions;
     step.submaps.push_back(s.id);

@@ -14,6 +14,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "intgrid/core/grid.hpp"
@@ -130,15 +132,18 @@ struct GraphSlamStats {
 
 class GraphSlam {
  public:
-  // A run whose sensor geometry (beam count, bearings, max range, mount) is `first`'s; the SLAM
-  // frame is first.robot. Throws std::invalid_argument for a bad configuration.
+  // A run whose SLAM frame is first.robot. Throws std::invalid_argument for a bad configuration
+  // or a first scan of no use (see insert).
   GraphSlam(const GraphSlamConfig& config, core::Arithmetic arithmetic, const core::Scan& first);
   ~GraphSlam();
   GraphSlam(GraphSlam&&) noexcept;
   GraphSlam& operator=(GraphSlam&&) noexcept;
 
-  // The next scan, `first` included. Throws std::invalid_argument for a scan of another geometry
-  // or an odometry jump over 1 km.
+  // The next scan, `first` included. Each scan's own geometry (beam count, bearings, mount) is
+  // used for it, through matching, insertion, loop closure and the final map: an interlaced laser
+  // (scans a quarter degree apart, 180 or 181 beams) needs nothing set. Throws
+  // std::invalid_argument for a scan of no ranges or more than 100000, a sensor mounted more than
+  // 100 m from the robot, or an odometry jump over 1 km.
   void insert(const core::Scan& scan);
   // Optimizes the graph once more with every closure found: call after the last scan.
   void finish();
@@ -157,8 +162,14 @@ class GraphSlam {
   struct Engine;
   template <class Cell>
   struct EngineOf;
+  // The per-scan path's form of scan's geometry, shared by the scans that state the same one: the
+  // kRecentSensors geometries seen last are looked up (an interlaced laser alternates two).
+  std::shared_ptr<const SlamSensor> sensor_for(const core::Scan& scan, const std::string& label);
+  static constexpr std::size_t kRecentSensors = 8;
+
   std::unique_ptr<Engine> engine_;
-  core::Scan geometry_;
+  double first_t_ = 0.0;
+  std::vector<std::pair<core::Scan, std::shared_ptr<const SlamSensor>>> sensors_;  // recent first
   core::Pose2 frame_, previous_robot_;
   std::vector<double> times_;  // every scan's
 };

@@ -41,9 +41,13 @@ std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig
                                           SlamRun& run);
 
 // Throws std::invalid_argument with a clear message for a log SLAM cannot use: no scans, no
-// odometry (no ODOM record and every scan at the same pose), scans whose geometry (beam count,
-// bearings, range limit or sensor mount) differs from the first's.
+// odometry (no ODOM record and every scan at the same pose), a first scan without ranges.
 void check_slam_log(const core::Log& log);
+
+// Throws std::invalid_argument naming the first scan whose geometry (beam count, bearings, range
+// limit or sensor mount) differs from the first scan's: the grid engine (run_slam, ScanSlam)
+// sets its pose grid up for one geometry. GraphSlam takes each scan's own.
+void check_one_sensor_geometry(const core::Log& log);
 
 // The farthest any scan's robot pose lies from the first scan's (m), 0 without scans: the reach
 // run_slam sizes its map for (ScanSlam's reach_m).

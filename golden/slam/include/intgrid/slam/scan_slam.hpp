@@ -20,7 +20,7 @@ namespace intgrid::slam {
 std::string scan_label(std::size_t number, double t);
 
 // What makes scan b's sensor geometry differ from a's ("beam count", "bearings", "maximum range",
-// "sensor mount"), or nullptr: a run has one geometry.
+// "sensor mount"), or nullptr.
 const char* geometry_difference(const core::Scan& b, const core::Scan& a);
 
 // One scan's inputs to the per-scan path, from its core::Scan and the previous scan's robot pose:
