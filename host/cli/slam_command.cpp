@@ -242,7 +242,8 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::GraphSlamConfi
   add("--loop-degrees", c.loops.window_degrees, "headings searched: +- this (degrees)",
       non_negative());
   add("--loop-min-score", c.loops.min_score,
-      "a closure scores at least this fraction of the best possible", real_range(0, 1, true));
+      "a closure scores at least this fraction of what the submap's own scans score in it",
+      real_range(0, 1, true));
   add("--loop-sigma-xy", c.loops.sigma_xy, "a closure's spread in the graph (m)", positive());
   add("--loop-sigma-degrees", c.loops.sigma_degrees, "a closure's spread in the graph (degrees)",
       positive());

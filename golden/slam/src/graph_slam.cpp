@@ -194,6 +194,9 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     SlamPose anchor;
     std::vector<std::size_t> nodes;
     std::optional<LocalGrid<Cell>> grid;  // once finished
+    // What its own nodes score in it, each at its pose, as a fraction of every hit on the
+    // strongest cell: the median over those with at least min_hits hits (0: none had).
+    double own_score = 0.0;
   };
   struct ScanRecord {
     std::size_t node;  // the last node at or before it (npos: none yet)
@@ -251,9 +254,33 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     const TrackStep step = tracker.track(scan, *sensor, std::llround(t * 1000.0));
     stats.wide_searches += step.wide;
     stats.unmatched_scans += !step.matched;
-    for (Submap<Cell>& done : tracker.take_finished()) submaps[done.id].grid = std::move(done.grid);
+    for (Submap<Cell>& done : tracker.take_finished()) finish_submap(std::move(done));
     if (step.node) add_node(step, scan, std::move(sensor));
     scans.push_back({nodes.empty() ? static_cast<std::size_t>(-1) : nodes.size() - 1, step.pose});
+  }
+
+  // A correct closure scores about what the submap's own scans score in it: that depends on how
+  // many beams a scan has and how often each cell was seen (half the beams, half the score, on
+  // the Telecom log), which an absolute threshold would have to be tuned to.
+  void finish_submap(Submap<Cell>&& done) {
+    SubmapRecord& s = submaps[done.id];
+    s.grid = std::move(done.grid);
+    const TrackerSetup& setup = tracker.setup();
+    std::vector<double> scores;
+    for (const std::size_t i : s.nodes) {
+      const Node& n = nodes[i];
+      const ScanPoints points =
+          scan_points(tracker.rays(), *n.sensor, n.range_mm, setup.max_range_mm);
+      if (static_cast<int>(points.size()) < setup.min_hits) continue;
+      const Match<Cell> own = match_exhaustive(*s.grid, tracker.rays(), points, n.local,
+                                               SearchWindow{}, setup.max_index, MatchScore<Cell>{});
+      scores.push_back(static_cast<double>(own.evidence) /
+                       (static_cast<double>(points.size()) * setup.max_index));
+    }
+    if (scores.empty()) return;
+    const auto middle = scores.begin() + static_cast<std::ptrdiff_t>(scores.size() / 2);
+    std::nth_element(scores.begin(), middle, scores.end());
+    s.own_score = *middle;
   }
 
   void add_node(const TrackStep& step, const QuantizedScan& scan,
@@ -293,14 +320,13 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     const core::Pose2 global = graph.poses()[node.vertex];
     const ScanPoints& points = tracker.points();
     const std::int64_t full = static_cast<std::int64_t>(points.size()) * tracker.setup().max_index;
-    const auto min_score = static_cast<MatchScore<Cell>>(
-        std::llround(static_cast<double>(full) * config.loops.min_score));
     const double reach2 = config.loops.max_distance * config.loops.max_distance;
     // The nearest finished submaps (by their middle node), nearest first.
     std::vector<std::pair<double, std::size_t>> near;
     for (std::size_t id = 0; id < submaps.size(); ++id) {
       const SubmapRecord& s = submaps[id];
-      if (!s.grid || std::find(step.submaps.begin(), step.submaps.end(), id) != step.submaps.end())
+      if (!s.grid || s.own_score <= 0.0 ||
+          std::find(step.submaps.begin(), step.submaps.end(), id) != step.submaps.end())
         continue;
       const core::Pose2 middle = graph.poses()[nodes[s.nodes[s.nodes.size() / 2]].vertex];
       const double dx = middle.x - global.x, dy = middle.y - global.y;
@@ -315,6 +341,8 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
           core::compose(to_pose2(s.anchor), core::relative(submap_pose, global));
       SlamPose guess = to_slam_pose(guess_pose);
       ++stats.loop_searches;
+      const auto min_score = static_cast<MatchScore<Cell>>(
+          std::llround(static_cast<double>(full) * config.loops.min_score * s.own_score));
       const Match<Cell> lattice =
           match_branch_and_bound(pyramid_of(id), tracker.rays(), points, guess, loop_window,
                                  tracker.setup().max_index, min_score);

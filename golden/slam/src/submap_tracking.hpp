@@ -4,6 +4,7 @@
 // without floating-point registers, and submap_tracking_double.cpp.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <utility>
@@ -75,6 +76,21 @@ class LocalTracker {
   std::int64_t node_ms_ = 0;
   bool started_ = false;
   ScanPoints points_;
+  // The evidence of the last matches, in thousandths of every hit on the strongest cell: what a
+  // correct match scores with this sensor here. The odometry's prior is weighed against it, not
+  // against that full score: with half the beams each cell is seen half as often and a correct
+  // match scores half as much (the Telecom log at 181 beams), and a prior of fixed weight would
+  // then hold the pose to the odometry twice as hard.
+  static constexpr std::size_t kRecentMatches = 31;
+  std::deque<std::int64_t> recent_evidence_permille_;
+  // Their median, clamped to [1, 1000]; 1000 before any match.
+  std::int64_t typical_evidence_permille() const {
+    if (recent_evidence_permille_.empty()) return 1000;
+    std::vector<std::int64_t> v(recent_evidence_permille_.begin(), recent_evidence_permille_.end());
+    const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), middle, v.end());
+    return std::clamp<std::int64_t>(*middle, 1, 1000);
+  }
 };
 
 template <class Cell>
@@ -100,6 +116,7 @@ TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, const SlamSensor&
         scan.odom_dtheta < 0 ? -std::int64_t{scan.odom_dtheta} : std::int64_t{scan.odom_dtheta};
     SearchWindow narrow = setup_.narrow, wide = setup_.wide;
     for (SearchWindow* w : {&narrow, &wide}) {
+      w->prior_weight_permille = typical_evidence_permille();
       if (w->prior_xy_mm > 0) w->prior_xy_mm += (setup_.prior_xy_per_mm_q16 * translation) >> 16;
       if (w->prior_theta_units > 0)
         w->prior_theta_units += (setup_.prior_theta_per_unit_q16 * rotation) >> 16;
@@ -107,6 +124,8 @@ TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, const SlamSensor&
     Match<Cell> best = match_exhaustive(target, rays, points_, predicted, narrow, setup_.max_index,
                                         MatchScore<Cell>{});
     step.score_permille = static_cast<std::int64_t>(best.evidence * 1000 / MatchScore<Cell>(full));
+    recent_evidence_permille_.push_back(step.score_permille);
+    if (recent_evidence_permille_.size() > kRecentMatches) recent_evidence_permille_.pop_front();
     if (step.score_permille < setup_.wide_below_permille) {
       step.wide = true;
       const Match<Cell> wider = match_exhaustive(target, rays, points_, predicted, wide,

@@ -39,14 +39,16 @@ ScanPoints scan_points(const core::IntegerRays& rays, const SlamSensor& sensor,
                        std::span<const std::int32_t> range_mm, std::int32_t max_range_mm);
 
 // The poses searched: the guess plus (i c, j c) for |i|, |j| <= cells and the guess's heading plus
-// k step_units for |k| <= steps. The prior costs full ((d / prior_xy_mm)^2 + (a / prior_theta)^2),
-// full being the score of every hit on a cell of the largest index (0: no prior).
+// k step_units for |k| <= steps. The prior costs w ((d / prior_xy_mm)^2 + (a / prior_theta)^2)
+// (0: no prior), w being prior_weight_permille thousandths of full, the score of every hit on a
+// cell of the largest index.
 struct SearchWindow {
   int cells = 0;
   int steps = 0;
   std::int32_t step_units = 64;
   std::int64_t prior_xy_mm = 0;
   std::int64_t prior_theta_units = 0;
+  std::int64_t prior_weight_permille = 1000;
 };
 
 template <class Cell>
@@ -65,6 +67,7 @@ template <class Cell>
 MatchScore<Cell> prior_cost(const SearchWindow& w, MatchScore<Cell> full, std::int64_t dx_mm,
                             std::int64_t dy_mm, std::int64_t da) {
   MatchScore<Cell> cost{};
+  full = full * MatchScore<Cell>(w.prior_weight_permille) / MatchScore<Cell>(1000);
   if (w.prior_xy_mm > 0)
     cost += full * MatchScore<Cell>(dx_mm * dx_mm + dy_mm * dy_mm) /
             MatchScore<Cell>(w.prior_xy_mm * w.prior_xy_mm);
