@@ -67,6 +67,7 @@ const FieldFlags& graph_slam_flags() {
       {"loops.window", "--loop-window"},
       {"loops.window_degrees", "--loop-degrees"},
       {"loops.min_score", "--loop-min-score"},
+      {"loops.drift", "--loop-drift"},
       {"loops.sigma_xy", "--loop-sigma-xy"},
       {"loops.sigma_degrees", "--loop-sigma-degrees"},
       {"graph.local_sigma_xy", "--local-sigma-xy"},
@@ -244,6 +245,10 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::GraphSlamConfi
   add("--loop-min-score", c.loops.min_score,
       "a closure scores at least this fraction of what the submap's own scans score in it",
       real_range(0, 1, true));
+  add("--loop-drift", c.loops.drift,
+      "a closure moves a node at most the tracking window plus this many m per m travelled since "
+      "the trajectory last met the submap",
+      real_range(0, 1, false));
   add("--loop-sigma-xy", c.loops.sigma_xy, "a closure's spread in the graph (m)", positive());
   add("--loop-sigma-degrees", c.loops.sigma_degrees, "a closure's spread in the graph (degrees)",
       positive());

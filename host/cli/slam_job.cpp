@@ -156,6 +156,7 @@ nlohmann::json submap_settings_json(const slam::GraphSlamConfig& c, const core::
             {"window", l.window},
             {"window_degrees", l.window_degrees},
             {"min_score", l.min_score},
+            {"drift", l.drift},
             {"sigma_xy", l.sigma_xy},
             {"sigma_degrees", l.sigma_degrees}}},
           {"graph",
@@ -354,6 +355,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                       {"unmatched_scans", s.unmatched_scans},
                       {"loop_searches", s.loop_searches},
                       {"loop_closures", s.loop_closures},
+                      {"rejected_closures", s.rejected_closures},
                       {"optimizations", s.optimizations},
                       {"peak_pyramid_bytes", s.peak_pyramid_bytes},
                       {"settings", submap_settings_json(o.submap_config, r.run.codec)}});

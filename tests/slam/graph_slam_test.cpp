@@ -399,5 +399,78 @@ TEST(GraphSlam, ConfigCheckNamesTheField) {
   EXPECT_THROW(check_graph_slam_config(c), std::invalid_argument);
 }
 
+// Two look-alike corridors: A (y 1 to 3 m) and B (y 5 to 7 m), 30 m long, the same niches at the
+// same x in both, joined at both ends; the robot drives A east, B west and A again. Seen from
+// inside, B is A moved 4 m north: a scan in B matches A's submaps 4 m off, inside the loop
+// search's window.
+SimulatedRun look_alike_corridors(std::size_t scans) {
+  core::ProbabilityGrid world(core::GridGeometry{680, 200, 0.05, 0.0, 0.0}, 1.0);
+  const auto carve = [&](double x0, double y0, double x1, double y1) {
+    for (int iy = 0; iy < world.geometry.height; ++iy)
+      for (int ix = 0; ix < world.geometry.width; ++ix) {
+        const double x = (ix + 0.5) * 0.05, y = (iy + 0.5) * 0.05;
+        if (x > x0 && x < x1 && y > y0 && y < y1) world.at(ix, iy) = 0.0;
+      }
+  };
+  carve(1, 1, 31, 3);   // A
+  carve(1, 5, 31, 7);   // B
+  carve(1, 1, 3, 7);    // the west connector
+  carve(29, 1, 31, 7);  // the east connector
+  for (double x = 6; x < 28; x += 5.5) {
+    for (const double y : {0.5, 4.5}) carve(x, y, x + 0.6, y + 0.6);        // niches below A and B
+    for (const double y : {2.9, 6.9}) carve(x + 2.0, y, x + 2.4, y + 0.5);  // and above
+  }
+  simulation::TrajectoryConfig route;
+  route.scans = scans;
+  const std::vector<core::Pose2> truth =
+      simulation::follow_route({{2, 2}, {30, 2}, {30, 6}, {2, 6}}, true, route);
+  simulation::OdometryNoiseConfig noise;
+  simulation::SimRandom odometry_random(21);
+  const std::vector<core::Pose2> odometry =
+      simulation::noisy_odometry(truth, noise, odometry_random);
+  const simulation::SensorConfig sensor = simulation::lidar_sensor(361, std::numbers::pi, 8.0);
+  simulation::SimRandom range_random(23);
+  SimulatedRun run;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    core::Scan scan = simulation::simulate_scan(world, sensor, {}, truth[i], range_random);
+    scan.t = 0.2 * static_cast<double>(i);
+    scan.robot = odometry[i];
+    run.truth.push_back({scan.t, truth[i]});
+    run.log.scans.push_back(std::move(scan));
+  }
+  return run;
+}
+
+// A scan in B matches a submap of A 4 m off, and the loop search's window (+-5 m) reaches it.
+// The closure is rejected as moving the node further than the front end can have drifted since
+// the trajectory last met that submap; the true closures (A with A, B with B, and A again at
+// the end of the lap) pass. Without the check (drift 1 m a metre, every match within the
+// window kept) the run ends up to 1 m off; with none at all (before the check), up to 4 m: B
+// laid onto A.
+void rejects_the_look_alike_corridor(core::Arithmetic arithmetic) {
+  static const SimulatedRun sim = look_alike_corridors(900);
+  GraphSlamStats stats;
+  const SlamRun run = run_graph_slam(sim.log, GraphSlamConfig{}, arithmetic, &stats);
+  const TrajectoryError slam = absolute_trajectory_error(run.trajectory, sim.truth);
+  const TrajectoryError odometry = absolute_trajectory_error(scan_poses(sim.log), sim.truth);
+  std::printf(
+      "look-alike corridors: ATE %.3f m (max %.3f m), odometry %.3f m; %zu closures, "
+      "%zu rejected, of %zu searches\n",
+      slam.rmse, slam.max, odometry.rmse, stats.loop_closures, stats.rejected_closures,
+      stats.loop_searches);
+  EXPECT_GT(odometry.rmse, 1.0);
+  EXPECT_GT(stats.rejected_closures, 0u);
+  EXPECT_GT(stats.loop_closures, 0u);
+  EXPECT_LT(slam.rmse, 0.15);
+  EXPECT_LT(slam.max, 0.5);
+}
+
+TEST(GraphSlam, RejectsALookAlikeCorridorAndKeepsTheTrueClosuresInInteger) {
+  rejects_the_look_alike_corridor(core::Arithmetic::integer);
+}
+TEST(GraphSlam, RejectsALookAlikeCorridorAndKeepsTheTrueClosuresInDouble) {
+  rejects_the_look_alike_corridor(core::Arithmetic::floating);
+}
+
 }  // namespace
 }  // namespace intgrid::slam

@@ -156,6 +156,7 @@ void check_graph_slam_config(const GraphSlamConfig& c) {
           "loops.max_distance", "must be in [0, 1000] metres");
   require(positive(c.loops.min_score) && c.loops.min_score <= 1.0, "loops.min_score",
           "must be in (0, 1]");
+  require(non_negative(c.loops.drift) && c.loops.drift <= 1.0, "loops.drift", "must be in [0, 1]");
   for (const auto& [v, name] : {std::pair{c.loops.sigma_xy, "loops.sigma_xy"},
                                 {c.loops.sigma_degrees, "loops.sigma_degrees"},
                                 {c.graph.local_sigma_xy, "graph.local_sigma_xy"},
@@ -188,6 +189,8 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     std::size_t vertex = 0;
     std::vector<std::int32_t> range_mm;
     std::shared_ptr<const SlamSensor> sensor;  // the geometry its scan stated
+    double travel = 0.0;                       // m the front end moved from the first node to it
+    double turn = 0.0;                         // rad it turned, in all
   };
   struct SubmapRecord {
     std::size_t vertex = 0;
@@ -197,6 +200,10 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     // What its own nodes score in it, each at its pose, as a fraction of every hit on the
     // strongest cell: the median over those with at least min_hits hits (0: none had).
     double own_score = 0.0;
+    // The travel (Node::travel) when the trajectory was last tied to it: its latest node, or
+    // the latest closure to it.
+    double linked_travel = 0.0;
+    double linked_turn = 0.0;  // and Node::turn then
   };
   struct ScanRecord {
     std::size_t node;  // the last node at or before it (npos: none yet)
@@ -295,12 +302,22 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
         ++stats.submaps;
       }
     Node node{step.pose, graph.add_node(core::compose(corr, local)), scan.range_mm,
-              std::move(sensor)};
+              std::move(sensor), 0.0};
+    if (!nodes.empty()) {
+      const double dx = static_cast<double>(step.pose.x_mm - nodes.back().local.x_mm) * 1e-3,
+                   dy = static_cast<double>(step.pose.y_mm - nodes.back().local.y_mm) * 1e-3;
+      node.travel = nodes.back().travel + std::hypot(dx, dy);
+      node.turn =
+          nodes.back().turn +
+          std::abs(static_cast<double>(step.pose.theta - nodes.back().local.theta)) * kUnitRadians;
+    }
     for (const std::size_t id : step.submaps) {
       SubmapRecord& s = submaps[id];
       graph.add_edge({s.vertex, node.vertex, core::relative(to_pose2(s.anchor), local),
                       g.local_sigma_xy, radians(g.local_sigma_degrees), false});
       s.nodes.push_back(nodes.size());
+      s.linked_travel = node.travel;
+      s.linked_turn = node.turn;
     }
     if (!nodes.empty())
       graph.add_edge({nodes.back().vertex, node.vertex,
@@ -349,6 +366,23 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
       if (!lattice.found) continue;
       const Match<Cell> refined = refine_match(*s.grid, tracker.rays(), points, guess, loop_window,
                                                tracker.setup().max_index, lattice);
+      // How far the closure moves the node from where the graph puts it, against how far the
+      // front end can have drifted since the trajectory was last tied to this submap: a scan
+      // of a look-alike corridor matches a submap of its twin well, but metres from the pose
+      // the chain of matches gives.
+      const double jump = std::hypot(static_cast<double>(refined.pose.x_mm - guess.x_mm),
+                                     static_cast<double>(refined.pose.y_mm - guess.y_mm)) *
+                          1e-3;
+      const core::Pose2 from_submap = core::relative(submap_pose, global);
+      const double lever = std::hypot(from_submap.x, from_submap.y);
+      const double drift = config.loops.drift *
+                           (node.travel - s.linked_travel + lever * (node.turn - s.linked_turn));
+      if (jump > config.tracking.window + drift) {
+        ++stats.rejected_closures;
+        continue;
+      }
+      s.linked_travel = node.travel;
+      s.linked_turn = node.turn;
       graph.add_edge({s.vertex, node.vertex,
                       core::relative(to_pose2(s.anchor), to_pose2(refined.pose)),
                       config.loops.sigma_xy, radians(config.loops.sigma_degrees), true});

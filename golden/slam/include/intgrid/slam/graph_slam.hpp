@@ -91,6 +91,11 @@ struct GraphSlamConfig {
     // at 361 and 181 beams; 0.8 beat 0.6 on all five. Held out, Intel and ACES then gave 0.032 m
     // and 0.052 m (0.036 and 0.062 with the earlier 0.45 of the full score; docs/results.md).
     double min_score = 0.8;
+    // A closure may move the node from the graph's estimate by at most the front end's window
+    // (tracking.window) plus this many metres per metre travelled since the trajectory was
+    // last tied to the submap (its own nodes or a closure to it); one that moves it further is
+    // rejected: a look-alike place, not this one.
+    double drift = 0.05;
     double sigma_xy = 0.03;  // m, the closure's spread in the graph
     double sigma_degrees = 0.3;
   } loops;
@@ -126,10 +131,11 @@ struct GraphSlamStats {
   std::size_t scans = 0;
   std::size_t nodes = 0;
   std::size_t submaps = 0;
-  std::size_t wide_searches = 0;    // scans the narrow window did not match well
-  std::size_t unmatched_scans = 0;  // too few hits or no map yet: odometry only
-  std::size_t loop_searches = 0;    // node-submap pairs searched
-  std::size_t loop_closures = 0;    // of them, matched and added to the graph
+  std::size_t wide_searches = 0;      // scans the narrow window did not match well
+  std::size_t unmatched_scans = 0;    // too few hits or no map yet: odometry only
+  std::size_t loop_searches = 0;      // node-submap pairs searched
+  std::size_t loop_closures = 0;      // of them, matched and added to the graph
+  std::size_t rejected_closures = 0;  // matched, but further off than the drift allows
   std::size_t optimizations = 0;
   std::size_t readings = 0;
   std::size_t unusable_readings = 0;
