@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/kernel_options.hpp"
 #include "intgrid/figures/polar_render.hpp"
 #include "intgrid/io/atomic_file.hpp"
 #include "intgrid/kernel/table_export.hpp"
@@ -56,36 +57,6 @@ const FieldFlags& hw_config_flags() {
   return flags;
 }
 
-// A golden check's message names a field first ("rings (R) must be ...") and becomes that
-// option's error; the kernel's own limits ("ISM kernel: ...", "sectoral ISM hardware: ...")
-// name none, and each is named by the option that moves it most directly.
-[[noreturn]] void rethrow_naming_options(const std::invalid_argument& e) {
-  std::string message = e.what();
-  for (const std::string_view prefix : {"ISM kernel: ", "sectoral ISM hardware: "})
-    if (message.starts_with(prefix)) message.erase(0, prefix.size());
-  try {
-    rethrow_naming_flags(std::invalid_argument(message), hw_config_flags());
-  } catch (const OptionError&) {
-    throw;
-  } catch (const std::invalid_argument&) {
-    // no field leads: one of the kernel's limits below
-  }
-  static const std::pair<std::string_view, std::string_view> kLimits[] = {
-      {"sigma", "--sigma"},
-      {"reading fraction", "--reading-frac"},
-      {"log fraction", "--log-frac"},
-      {"quadratic coefficient fraction", "--quad-coef-frac"},
-      {"reading", "--rings"},  // reach, (R + window) << reading_frac, must fit the port
-      {"quadratic term", "--cell"},
-      {"log", "--rings"},  // the ring prior (R - 1) * A grows the log words
-      {"multiplier", "--sectors"},
-      {"conditions", "--sectors"}};
-  for (const auto& [needle, flag] : kLimits)
-    if (message.find(needle) != std::string::npos)
-      bad_option(std::string(flag), "the kernel cannot hold this configuration: " + message);
-  throw std::invalid_argument(message);
-}
-
 // NAME becomes file names and the .svh's macro SECTORAL_ISM_<NAME>_PARAMS.
 void check_name(const std::string& name) {
   const bool ok =
@@ -115,7 +86,7 @@ void run_hw_config(const HwConfigArgs& a) {
   try {
     files = kernel::ism_table_files(config, rom_dir);
   } catch (const std::invalid_argument& e) {
-    rethrow_naming_options(e);
+    rethrow_naming_kernel_options(e, hw_config_flags());
   }
   std::filesystem::create_directories(a.out);
   std::size_t written = 0;

@@ -15,6 +15,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/kernel_agreement.hpp"
+#include "cli/kernel_options.hpp"
 #include "intgrid/core/narrow_ism.hpp"
 #include "intgrid/figures/polar_render.hpp"
 #include "intgrid/kernel/ism_kernel.hpp"
@@ -49,10 +50,11 @@ struct IsmArgs {
 
 // The golden model's fields -> the options of `ism`.
 const FieldFlags& ism_flags() {
-  static const FieldFlags flags = {{"sigma", "--sigma"},     {"k_d", "--k-d"},
-                                   {"k_theta", "--k-theta"}, {"k_size", "--k-size"},
-                                   {"cell size", "--cell"},  {"index width", "--bits"},
-                                   {"eps", "--eps"},         {"reading z", "--z"}};
+  static const FieldFlags flags = {
+      {"sigma", "--sigma"},   {"k_d", "--k-d"},         {"k_theta", "--k-theta"},
+      {"k_size", "--k-size"}, {"cell size", "--cell"},  {"index width", "--bits"},
+      {"eps", "--eps"},       {"reading z", "--z"},     {"rings", "--rings"},
+      {"bins", "--bins"},     {"sectors", "--sectors"}, {"FOV", "--fov"}};
   return flags;
 }
 
@@ -256,7 +258,11 @@ void add_ism_command(CLI::App& app) {
       ->needs(fov)
       ->excludes(agreement);
   cmd->callback([a] {
-    naming_flags(ism_flags(), [&] { a->fov_degrees ? run_sectoral_ism(*a) : run_narrow_ism(*a); });
+    try {
+      a->fov_degrees ? run_sectoral_ism(*a) : run_narrow_ism(*a);
+    } catch (const std::invalid_argument& e) {
+      rethrow_naming_kernel_options(e, ism_flags());
+    }
   });
 }
 

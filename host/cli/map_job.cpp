@@ -35,12 +35,19 @@ FieldFlags map_flags(const MapJobOptions& o) {
 
 core::SepsCodec codec_for(const MapJobOptions& o) {
   if (o.eps) return core::SepsCodec(o.bits, *o.eps);
-  const double pmax = core::narrow_pmax(o.resolution, o.model.sigma0);
+  const double pmax =
+      naming_flags(map_flags(o), [&] { return core::narrow_pmax(o.resolution, o.model.sigma0); });
+  const std::string why = option_number(o.resolution) + " m cells with --sigma " +
+                          option_number(o.model.sigma0) + " m give the ISM a Pmax of " +
+                          option_number(pmax);
   if (!(pmax > 0.5 && pmax < 1.0))
-    bad_option("--sigma", option_number(o.model.sigma0) + " m with " + option_number(o.resolution) +
-                              " m cells gives the ISM a Pmax of " + option_number(pmax) +
-                              ", outside (1/2, 1), so --levels cannot set eps: give --eps");
-  return core::SepsCodec::for_levels(o.bits, pmax, o.levels);
+    bad_option("--cell", why + ", outside (1/2, 1), so --levels cannot set eps: give --eps");
+  try {
+    return core::SepsCodec::for_levels(o.bits, pmax, o.levels);
+  } catch (const std::invalid_argument& e) {
+    bad_option("--cell", why + ", too close to 1/2 for --levels " + std::to_string(o.levels) +
+                             " to set eps (" + e.what() + "): use larger cells or give --eps");
+  }
 }
 
 // The grid covering the log; a log without a valid reading is a bad input file, a grid too big

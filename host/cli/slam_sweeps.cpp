@@ -517,14 +517,21 @@ void run_slam_sweeps(const SlamSweepOptions& o) {
   const Plan plan = make_plan(o);
   if (plan.scans < 2) throw std::invalid_argument("--scans must be at least 2");
   check_slam_options(plan.base);
-  std::filesystem::create_directories(o.out);
   const World world = make_world(o.seed, plan.scans);
   const std::vector<RunSpec> specs = make_specs(plan);
 
   // A short untimed run of each arithmetic first, so that the first timed run does not pay alone
-  // for the process's first use of the allocator, the page tables and the caches.
-  for (const core::Arithmetic a : {core::Arithmetic::integer, core::Arithmetic::floating})
-    slam::run_slam(first_scans(world.sim.log, 5), plan.base, a);
+  // for the process's first use of the allocator, the page tables and the caches. What the
+  // configuration check cannot see, the map's size, it finds before anything is written.
+  for (const core::Arithmetic a : {core::Arithmetic::integer, core::Arithmetic::floating}) {
+    try {
+      slam::run_slam(first_scans(world.sim.log, 5), plan.base, a);
+    } catch (const std::invalid_argument& e) {
+      bad_option("--cell", "a map of " + option_number(plan.base.cell) +
+                               " m cells over the simulated floor: " + e.what());
+    }
+  }
+  std::filesystem::create_directories(o.out);
 
   std::vector<RunResult> results;
   {

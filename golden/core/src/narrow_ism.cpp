@@ -4,6 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "intgrid/core/failure.hpp"
 
 namespace intgrid::core {
 
@@ -22,6 +26,10 @@ void narrow_ism(const GaussianBeamModel& model, double z, double cell, std::span
     out[k - 1] = term;
     log_max = std::max(log_max, term);
   }
+  if (!std::isfinite(log_max))
+    fail<std::invalid_argument>("sigma " + number_text(model.sigma0) +
+                                " m is too narrow for a reading at " + number_text(z) +
+                                " m: every cell's likelihood underflows");
   // Pass 2: terms rescaled by the largest, so the denominator is at least 1.
   double denominator = 0.0;
   for (double& term : out) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "intgrid/core/failure.hpp"
@@ -11,6 +12,12 @@
 namespace intgrid::core {
 
 double narrow_pmax(double cell, double sigma, double offset) {
+  // The ISM depends on cell / sigma only; past these ratios its line of sight would take
+  // millions of cells, or every term underflows.
+  if (!(cell > 0.0) || !(sigma > 0.0) || !(cell / sigma >= 1e-4) || !(cell / sigma <= 1e4))
+    fail<std::invalid_argument>("cell size " + number_text(cell) +
+                                " m is not within 1e-4 to 1e4 times sigma (" + number_text(sigma) +
+                                " m)");
   // Far enough from the sensor and from the grid's end that neither boundary
   // moves the peak: 40 sigma covers every term double precision can see.
   const double reach = std::ceil(40.0 * sigma / cell);
@@ -45,8 +52,8 @@ WorstCasePmax narrow_pmax_worst_case(double cell, double sigma) {
 }
 
 double smallest_cell_for_pmax(double sigma, double pmax, bool worst_case) {
-  if (!(sigma > 0.0) || !std::isfinite(sigma))
-    fail<std::invalid_argument>("sigma must be a positive finite number");
+  if (!(sigma >= 1e-6) || !(sigma <= 1e6))
+    fail<std::invalid_argument>("sigma must lie in [1e-6, 1e6] metres");
   if (!(pmax > 0.5 && pmax < 1.0)) fail<std::invalid_argument>("Pmax must lie in (1/2, 1)");
   const auto reached = [&](double cell) {
     return (worst_case ? narrow_pmax_worst_case(cell, sigma).pmax : narrow_pmax(cell, sigma)) >=

@@ -95,7 +95,7 @@ IsmKernelTables make_ism_kernel(const core::ConeSensorModel& model, const core::
       const double coef = std::round(std::numbers::log2e / (2.0 * sigma_cells * sigma_cells) *
                                      std::exp2(format.quad_coef_frac_bits));
       require(coef >= 1.0 && coef < 4294967296.0,
-              "sigma / cell is out of the quadratic coefficient's 32-bit range");
+              "sigma is out of the quadratic coefficient's 32-bit range for this cell size");
       k.quad_coef.push_back(static_cast<std::uint32_t>(coef));
       k.log_norm.push_back(round_log(std::log2(sigma * std::sqrt(2.0 * std::numbers::pi)) * one));
     }

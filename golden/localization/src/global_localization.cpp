@@ -81,6 +81,7 @@ void check_global_loc_config(const GlobalLocConfig& c) {
     core::fail<std::invalid_argument>("headings must be 4..4096, got " +
                                       std::to_string(c.headings));
   positive(c.sigma, "sigma");
+  if (c.sigma > 1.0) core::fail<std::invalid_argument>("sigma must be at most 1 metre");
   positive(c.max_range, "max_range");
   if (c.seps_bits < 2 || c.seps_bits > 16)
     core::fail<std::invalid_argument>("seps_bits must be 2..16, got " +
@@ -178,6 +179,12 @@ LocalizationMap::LocalizationMap(const core::ProbabilityGrid& map, double occupi
                                   : PoseCellClass::unknown;
     free_cells_ += class_[xy] == PoseCellClass::free;
   }
+  const bool map_has_free_cell = std::any_of(map.cells.begin(), map.cells.end(),
+                                             [&](double p) { return p <= free_threshold; });
+  if (free_cells_ == 0 && map_has_free_cell)
+    core::fail<std::invalid_argument>("pose_res: " + core::number_text(R) +
+                                      " m pose cells are too coarse for this map: no free pose "
+                                      "cell (none holds free map cells only)");
   if (free_cells_ == 0)
     core::fail<std::invalid_argument>(
         "map: no free pose cell (every pose cell holds a map cell above " +

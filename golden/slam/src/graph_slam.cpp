@@ -111,6 +111,14 @@ void check_graph_slam_config(const GraphSlamConfig& c) {
           "headings", "must be a power of two from 64 to 16384");
   require(positive(c.sensor.sigma) && c.sensor.sigma >= 0.001 && c.sensor.sigma <= 1.0,
           "sensor.sigma", "must be in [0.001, 1] metres");
+  // The submaps' S_eps codec needs the ISM's Pmax in (1/2, 1) and eps in (0, 1/2).
+  try {
+    (void)make_codec(c);
+  } catch (const std::invalid_argument& e) {
+    core::fail<std::invalid_argument>("cell " + core::number_text(c.cell) +
+                                      " m with sensor.sigma " + core::number_text(c.sensor.sigma) +
+                                      " m gives no S_eps codec: " + e.what());
+  }
   require(positive(c.sensor.max_range) && c.sensor.max_range <= 200.0 &&
               c.sensor.max_range >= 2.0 * c.cell,
           "sensor.max_range", "must be in [2 cells, 200] metres");
@@ -127,13 +135,15 @@ void check_graph_slam_config(const GraphSlamConfig& c) {
           "must be in [0, 180]");
   require(non_negative(c.filter.seconds) && c.filter.seconds <= 1e6, "filter.seconds",
           "must be in [0, 1e6]");
-  const auto window = [&](double m, double degrees, const std::string& name) {
-    require(non_negative(m) && m <= 20.0, name + "window", "must be in [0, 20] metres");
-    require(non_negative(degrees) && degrees <= 180.0, name + "degrees", "must be in [0, 180]");
+  const auto window = [&](double m, double degrees, const char* m_name, const char* degrees_name) {
+    require(non_negative(m) && m <= 20.0, m_name, "must be in [0, 20] metres");
+    require(non_negative(degrees) && degrees <= 180.0, degrees_name, "must be in [0, 180]");
   };
-  window(c.tracking.window, c.tracking.window_degrees, "tracking.");
-  window(c.tracking.wide_window, c.tracking.wide_degrees, "tracking.wide_");
-  window(c.loops.window, c.loops.window_degrees, "loops.");
+  window(c.tracking.window, c.tracking.window_degrees, "tracking.window",
+         "tracking.window_degrees");
+  window(c.tracking.wide_window, c.tracking.wide_degrees, "tracking.wide_window",
+         "tracking.wide_degrees");
+  window(c.loops.window, c.loops.window_degrees, "loops.window", "loops.window_degrees");
   // Every pose of these windows is scored.
   require(c.tracking.window <= 2.0, "tracking.window", "must be at most 2 metres");
   require(c.tracking.wide_window <= 3.0, "tracking.wide_window", "must be at most 3 metres");

@@ -32,7 +32,8 @@ std::int32_t millimetres(double metres) {
 void check_slam_config(const SlamConfig& c) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
-  require(positive(c.cell) && c.cell <= 10.0, "cell", "must be in (0, 10] metres");
+  require(positive(c.cell) && c.cell >= 0.001 && c.cell <= 10.0, "cell",
+          "must be in [0.001, 10] metres");
   require(std::abs(c.cell * 1000.0 - std::round(c.cell * 1000.0)) < 1e-6, "cell",
           "must be a whole number of millimetres");
   require(c.headings >= 8 && c.headings <= core::kAngleUnitsPerTurn &&
@@ -45,7 +46,8 @@ void check_slam_config(const SlamConfig& c) {
           "window.headings", "must be odd, 1..255 and at most headings");
   require(c.schedule.lambda >= 1, "schedule.lambda", "must be >= 1");
   require(c.schedule.xi >= 1, "schedule.xi", "must be >= 1");
-  require(positive(c.beam.sigma) && c.beam.sigma >= 0.001, "beam.sigma", "must be at least 1 mm");
+  require(positive(c.beam.sigma) && c.beam.sigma >= 0.001 && c.beam.sigma <= 1.0, "beam.sigma",
+          "must be in [0.001, 1] metres");
   require(positive(c.beam.likelihood_floor) && c.beam.likelihood_floor < 1.0,
           "beam.likelihood_floor", "must be in (0, 1)");
   require(c.beam.beams >= 1, "beam.beams", "must be >= 1");
@@ -98,6 +100,8 @@ SlamSetup make_slam_setup(const SlamConfig& config, const core::Scan& geometry, 
   // within reach_m.
   const double half_m =
       reach_m + config.beam.max_range + 3.0 * config.beam.sigma + 2.0 * mount + config.map.margin;
+  if (!(half_m / config.cell < 32767.0))
+    core::fail<std::invalid_argument>("SLAM: the map would exceed 65535 cells a side");
   const auto half =
       static_cast<long long>(std::ceil(half_m / config.cell)) + config.window.cells / 2 + 4;
   if (2 * half + 1 > 65535)

@@ -3,6 +3,7 @@
 // instead: nothing there could catch the error, and a wrong result must not go on.
 #pragma once
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -16,6 +17,13 @@ template <class Error>
   (void)what;
   std::abort();
 #endif
+}
+
+// A number as failure messages print it: six significant digits ("0.05", "1e+09").
+inline std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
 }
 
 }  // namespace intgrid::core

@@ -143,7 +143,9 @@ inline IsmHwDerived derive_ism_hw(const IsmKernelTables& k, int index_bits) {
   std::int64_t gap = k.thresholds.front();
   for (std::size_t n = 1; n < k.thresholds.size(); ++n)
     gap = std::min<std::int64_t>(gap, k.thresholds[n] - k.thresholds[n - 1]);
-  require(gap >= 1, "thresholds are not strictly increasing");
+  require(gap >= 1,
+          "eps is too small for the log words' fraction: thresholds are not strictly "
+          "increasing");
   d.bucket_shift = unsigned_bits(std::uint64_t(gap)) - 1;
   d.bucket_count = int(k.thresholds.back() >> d.bucket_shift) + 1;
   d.bucket_bits = unsigned_bits(std::uint64_t(k.max_index));
