@@ -283,6 +283,8 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
   try {
     world.emplace(map.grid, map.occupied_thresh, map.free_thresh, o.clearance);
   } catch (const std::invalid_argument& e) {
+    if (std::string_view(e.what()).find("from every non-free cell") != std::string_view::npos)
+      bad_option("--clearance", std::string(e.what()) + " in " + o.map.string());
     throw io::InputError(o.map, 0, "image", e.what());
   }
   std::filesystem::create_directories(o.out);

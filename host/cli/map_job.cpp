@@ -35,6 +35,10 @@ FieldFlags map_flags(const MapJobOptions& o) {
 
 core::SepsCodec codec_for(const MapJobOptions& o) {
   if (o.eps) return core::SepsCodec(o.bits, *o.eps);
+  if (o.levels >= core::max_index_for_bits(o.bits))
+    bad_option("--levels", "must be below the largest index of --bits " + std::to_string(o.bits) +
+                               " (" + std::to_string(core::max_index_for_bits(o.bits)) +
+                               "): a reading's occupied index would then saturate every cell");
   const double pmax =
       naming_flags(map_flags(o), [&] { return core::narrow_pmax(o.resolution, o.model.sigma0); });
   const std::string why = option_number(o.resolution) + " m cells with --sigma " +
@@ -135,6 +139,12 @@ MapJobResult run_map_job(const MapJobOptions& o) {
   LogInput input = read_log_input(o.log);
   const core::Log& log = input.log;
   const core::GridGeometry geometry = geometry_for(log, o);
+  // libpng writes at most a million pixels a row or column (its default limit).
+  if (geometry.width > 1000000 || geometry.height > 1000000)
+    bad_option("--cell", option_number(o.resolution) + " m cells make a map of " +
+                             std::to_string(geometry.width) + " x " +
+                             std::to_string(geometry.height) +
+                             " cells, past the million pixels a side its PNG can hold");
   require_memory_for(log, geometry, o);
   io::OutputFolder out = open_output_folder(o.out);
   MapJobResult result = naming_flags(map_flags(o), [&] { return map_log(log, geometry, o); });

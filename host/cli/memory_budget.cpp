@@ -20,8 +20,10 @@ std::string memory_text(double bytes) {
   static constexpr const char* kUnits[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
   int unit = 0;
   while (bytes >= 999.5 && unit < 6) bytes /= 1000.0, ++unit;
-  char text[32];
-  if (unit == 0 || bytes >= 99.95)
+  char text[48];
+  if (bytes >= 999.5)  // past the largest unit
+    std::snprintf(text, sizeof text, "%.3g %s", bytes, kUnits[unit]);
+  else if (unit == 0 || bytes >= 99.95)
     std::snprintf(text, sizeof text, "%.0f %s", bytes, kUnits[unit]);
   else
     std::snprintf(text, sizeof text, "%.*f %s", bytes >= 9.995 ? 1 : 2, bytes, kUnits[unit]);

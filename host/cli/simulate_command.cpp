@@ -79,14 +79,20 @@ simulation::OdometryNoiseConfig parse_odometry_noise(const std::string& text) {
   for (std::string field; std::getline(in, field, ',');) {
     char* end = nullptr;
     const double v = std::strtod(field.c_str(), &end);
-    if (field.empty() || end != field.c_str() + field.size() || !std::isfinite(v) || v < 0.0)
+    // Past 1 the odometry wanders without bound (1e300 put it 1e148 m away, where no reader
+    // follows).
+    if (field.empty() || end != field.c_str() + field.size() || !(v >= 0.0 && v <= 1.0))
       bad_option("--odometry-noise",
-                 "must be four numbers >= 0 separated by commas (A1,A2,A3,A4), got '" + text + "'");
+                 "must be four numbers in [0, 1] separated by commas "
+                 "(A1,A2,A3,A4), got '" +
+                     text + "'");
     values.push_back(v);
   }
   if (values.size() != 4 || text.back() == ',')
     bad_option("--odometry-noise",
-               "must be four numbers >= 0 separated by commas (A1,A2,A3,A4), got '" + text + "'");
+               "must be four numbers in [0, 1] separated by commas "
+               "(A1,A2,A3,A4), got '" +
+                   text + "'");
   return {values[0], values[1], values[2], values[3]};
 }
 
@@ -297,8 +303,10 @@ void add_simulate_command(CLI::App& app) {
                   "degrees: the lidar's span (default 180; 360 = all round) or each cone's FOV "
                   "(default 30)")
       ->check(real_range(0.0, 360.0, true, false));
+  // The log readers refuse a range limit past kMaxRangeLimitMetres: so does the simulator,
+  // rather than write a log nothing reads.
   cmd->add_option("--max-range", a->max_range, "sensor range (m; default lidar 8, cone 5)")
-      ->check(positive());
+      ->check(real_range(0.0, io::kMaxRangeLimitMetres, true, false));
   cmd->add_option("--noise", a->noise, "standard deviation of the Gaussian range noise (m)")
       ->check(non_negative())
       ->capture_default_str();

@@ -1309,6 +1309,10 @@ TEST_F(Cli, EveryBadInputExitsTwoNamingTheFlagOrTheFile) {
       {globloc + " --sigma 1e9", "--sigma", "globloc"},
       {globloc + " --pose-cell 1e9", "--pose-cell", "globloc"},
       {"figure slam-sweeps --out " + out + " --cell 1e-300", "--cell", "figure slam-sweeps"},
+      {sweeps + " --clearance 1e9", "--clearance", "figure globloc-sweeps"},
+      {simulate + " --max-range 1e9", "--max-range", "simulate"},
+      {simulate + " --odometry-noise 0,0,1e300,0", "--odometry-noise", "simulate"},
+      {map + " --cell 0.05 --levels 200", "--levels", "map"},
       // map
       {map + " --cell abc", "--cell", "map"},
       {map + " --cell 0", "--cell", "map"},

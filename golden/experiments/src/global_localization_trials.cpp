@@ -51,7 +51,7 @@ GlobalTrialWorld::GlobalTrialWorld(const core::ProbabilityGrid& map, double occu
       cells_.push_back(i);
   }
   if (cells_.empty())
-    core::fail<std::invalid_argument>("the map has no free cell " + std::to_string(clearance) +
+    core::fail<std::invalid_argument>("the map has no free cell " + core::number_text(clearance) +
                                       " m from every non-free cell");
 }
 
