@@ -398,6 +398,7 @@ void add_demo_command(CLI::App& app) {
   cmd->add_option("--data", a->data,
                   "folder of the bundled data (default: share/intgrid/data beside the command)");
   add_model_options(*cmd, a->map);
+  add_max_memory_option(*cmd, a->map.max_memory_bytes);
   cmd->callback([a] {
     const std::filesystem::path out = std::filesystem::absolute(a->out);
     // Read before anything is printed: a wrong --data is one error line.

@@ -100,7 +100,7 @@ void check_global_loc_config(const GlobalLocConfig& c) {
   positive(c.lambda_short, "lambda_short");
   if (c.refine_levels < 0 || c.refine_levels > 8 || (c.headings << c.refine_levels) > 65536)
     core::fail<std::invalid_argument>(
-        "refine_levels must be 0..8 with headings 2^refine_levels at most 65536, got " +
+        "refine_levels must be 0..8 and keep headings x 2^levels at most 65536, got " +
         std::to_string(c.refine_levels));
 }
 
