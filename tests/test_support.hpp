@@ -3,7 +3,11 @@
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -68,6 +72,17 @@ class TempDir {
  private:
   fs::path path_;
 };
+
+// The id of a process that has ended (a child reaped at once): what a writer killed mid-run
+// leaves in its staging names.
+inline pid_t dead_pid() {
+  const pid_t child = ::fork();
+  if (child < 0) throw std::system_error(errno, std::generic_category(), "fork");
+  if (child == 0) ::_exit(0);
+  if (::waitpid(child, nullptr, 0) != child)
+    throw std::system_error(errno, std::generic_category(), "waitpid");
+  return child;
+}
 
 inline std::string read_bytes(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -82,11 +81,7 @@ TEST(AtomicFile, UncommittedFileIsDiscarded) {
 // other outputs' leftovers.
 TEST(AtomicFile, TheNextWriteRemovesWhatAKilledWriterLeft) {
   const TempDir dir;
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) ::_exit(0);
-  ASSERT_EQ(::waitpid(child, nullptr, 0), child);  // a process that no longer exists
-  const std::string dead = std::to_string(child), live = std::to_string(::getppid());
+  const std::string dead = std::to_string(test::dead_pid()), live = std::to_string(::getppid());
   dir.write("out.txt.tmp." + dead + ".0", "half");
   dir.write("out.txt.tmp." + dead + ".17", "half");
   dir.write("out.txt.tmp." + live + ".0", "being written");

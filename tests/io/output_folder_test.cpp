@@ -4,7 +4,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -68,11 +67,7 @@ TEST(OutputFolder, ARunThatStopsBeforeItsCommitLeavesTheOldSet) {
 
 TEST(OutputFolder, TheNextRunRemovesTheStagingFoldersOfKilledOnes) {
   const TempDir dir;
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) ::_exit(0);
-  ASSERT_EQ(::waitpid(child, nullptr, 0), child);  // a process that no longer exists
-  const std::string dead = std::to_string(child), live = std::to_string(::getppid());
+  const std::string dead = std::to_string(test::dead_pid()), live = std::to_string(::getppid());
   fs::create_directories(dir / ("run.tmp." + dead + ".3"));
   dir.write("run.tmp." + dead + ".3/a.txt", "half");
   fs::create_directories(dir / ("run.tmp." + live + ".0"));

@@ -251,6 +251,26 @@ struct SimulatedRun {
   std::vector<TimedPose> truth;
 };
 
+// A robot driven along truth in world, a scan every 0.2 s: the log carries the default noisy
+// odometry (seeded odometry_seed) and the sensor's noisy ranges (seeded range_seed).
+SimulatedRun record_run(const core::ProbabilityGrid& world, const std::vector<core::Pose2>& truth,
+                        std::uint64_t odometry_seed, const simulation::SensorConfig& sensor,
+                        std::uint64_t range_seed) {
+  simulation::SimRandom odometry_random(odometry_seed);
+  const std::vector<core::Pose2> odometry =
+      simulation::noisy_odometry(truth, simulation::OdometryNoiseConfig{}, odometry_random);
+  simulation::SimRandom range_random(range_seed);
+  SimulatedRun run;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    core::Scan scan = simulation::simulate_scan(world, sensor, {}, truth[i], range_random);
+    scan.t = 0.2 * static_cast<double>(i);
+    scan.robot = odometry[i];
+    run.truth.push_back({scan.t, truth[i]});
+    run.log.scans.push_back(std::move(scan));
+  }
+  return run;
+}
+
 SimulatedRun simulated_loop() {
   simulation::FloorplanConfig floor;
   floor.cell = 0.05;
@@ -258,21 +278,8 @@ SimulatedRun simulated_loop() {
   simulation::TrajectoryConfig route;
   route.scans = 700;
   const std::vector<core::Pose2> truth = simulation::follow_route(plan.corridor_loop, true, route);
-  simulation::OdometryNoiseConfig noise;  // about 1 m off after one lap
-  simulation::SimRandom odometry_random(9);
-  const std::vector<core::Pose2> odometry =
-      simulation::noisy_odometry(truth, noise, odometry_random);
-  const simulation::SensorConfig sensor = simulation::lidar_sensor(361, std::numbers::pi, 20.0);
-  simulation::SimRandom range_random(13);
-  SimulatedRun run;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    core::Scan scan = simulation::simulate_scan(plan.grid, sensor, {}, truth[i], range_random);
-    scan.t = 0.2 * static_cast<double>(i);
-    scan.robot = odometry[i];
-    run.truth.push_back({scan.t, truth[i]});
-    run.log.scans.push_back(std::move(scan));
-  }
-  return run;
+  // The default odometry noise: about 1 m off after one lap.
+  return record_run(plan.grid, truth, 9, simulation::lidar_sensor(361, std::numbers::pi, 20.0), 13);
 }
 
 const SimulatedRun& loop_run() {
@@ -424,21 +431,7 @@ SimulatedRun look_alike_corridors(std::size_t scans) {
   route.scans = scans;
   const std::vector<core::Pose2> truth =
       simulation::follow_route({{2, 2}, {30, 2}, {30, 6}, {2, 6}}, true, route);
-  simulation::OdometryNoiseConfig noise;
-  simulation::SimRandom odometry_random(21);
-  const std::vector<core::Pose2> odometry =
-      simulation::noisy_odometry(truth, noise, odometry_random);
-  const simulation::SensorConfig sensor = simulation::lidar_sensor(361, std::numbers::pi, 8.0);
-  simulation::SimRandom range_random(23);
-  SimulatedRun run;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    core::Scan scan = simulation::simulate_scan(world, sensor, {}, truth[i], range_random);
-    scan.t = 0.2 * static_cast<double>(i);
-    scan.robot = odometry[i];
-    run.truth.push_back({scan.t, truth[i]});
-    run.log.scans.push_back(std::move(scan));
-  }
-  return run;
+  return record_run(world, truth, 21, simulation::lidar_sensor(361, std::numbers::pi, 8.0), 23);
 }
 
 // A scan in B matches a submap of A 4 m off, and the loop search's window (+-5 m) reaches it.
