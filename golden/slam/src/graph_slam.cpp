@@ -210,10 +210,11 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     // What its own nodes score in it, each at its pose, as a fraction of every hit on the
     // strongest cell: the median over those with at least min_hits hits (0: none had).
     double own_score = 0.0;
-    // The travel (Node::travel) when the trajectory was last tied to it: its latest node, or
-    // the latest closure to it.
-    double linked_travel = 0.0;
-    double linked_turn = 0.0;  // and Node::turn then
+    // The trajectory's latest tie to it: its latest own node, or the node of the latest closure
+    // to it, and where that node lies in its frame (the local frame): the front end's pose, or
+    // the closure's.
+    std::size_t linked_node = 0;
+    SlamPose linked_pose{};
   };
   struct ScanRecord {
     std::size_t node;  // the last node at or before it (npos: none yet)
@@ -326,8 +327,8 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
       graph.add_edge({s.vertex, node.vertex, core::relative(to_pose2(s.anchor), local),
                       g.local_sigma_xy, radians(g.local_sigma_degrees), false});
       s.nodes.push_back(nodes.size());
-      s.linked_travel = node.travel;
-      s.linked_turn = node.turn;
+      s.linked_node = nodes.size();
+      s.linked_pose = step.pose;
     }
     if (!nodes.empty())
       graph.add_edge({nodes.back().vertex, node.vertex,
@@ -376,23 +377,30 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
       if (!lattice.found) continue;
       const Match<Cell> refined = refine_match(*s.grid, tracker.rays(), points, guess, loop_window,
                                                tracker.setup().max_index, lattice);
-      // How far the closure moves the node from where the graph puts it, against how far the
-      // front end can have drifted since the trajectory was last tied to this submap: a scan
-      // of a look-alike corridor matches a submap of its twin well, but metres from the pose
-      // the chain of matches gives.
-      const double jump = std::hypot(static_cast<double>(refined.pose.x_mm - guess.x_mm),
-                                     static_cast<double>(refined.pose.y_mm - guess.y_mm)) *
-                          1e-3;
-      const core::Pose2 from_submap = core::relative(submap_pose, global);
-      const double lever = std::hypot(from_submap.x, from_submap.y);
-      const double drift = config.loops.drift *
-                           (node.travel - s.linked_travel + lever * (node.turn - s.linked_turn));
+      // A correct closure puts the node within what the front end can have drifted since the
+      // trajectory was last tied to this submap (its own nodes or the latest closure to it); a
+      // scan of a look-alike corridor matches a submap of its twin well, but metres away. Two
+      // places may stand for where the node is: the graph's estimate, and the tie carried along
+      // the graph's chain from the tied node to this one. Either suffices: a closure accepted
+      // since the last optimization has not moved the estimate yet, and the next ones to the
+      // same place agree with it, not with the estimate; a wrong closure that slipped through
+      // must not turn the true ones after it away, and those agree with the estimate.
+      const Node& tied = nodes[s.linked_node];
+      const core::Pose2 chain = core::relative(graph.poses()[tied.vertex], global);
+      const core::Pose2 from_tie = core::compose(to_pose2(s.linked_pose), chain);
+      const core::Pose2 found = to_pose2(refined.pose);
+      const double jump = std::min(std::hypot(found.x - from_tie.x, found.y - from_tie.y),
+                                   std::hypot(found.x - guess_pose.x, found.y - guess_pose.y));
+      // A heading error along the chain moves the node by its distance from the tie.
+      const double lever = std::hypot(chain.x, chain.y);
+      const double drift =
+          config.loops.drift * (node.travel - tied.travel + lever * (node.turn - tied.turn));
       if (jump > config.tracking.window + drift) {
         ++stats.rejected_closures;
         continue;
       }
-      s.linked_travel = node.travel;
-      s.linked_turn = node.turn;
+      s.linked_node = nodes.size() - 1;
+      s.linked_pose = refined.pose;
       graph.add_edge({s.vertex, node.vertex,
                       core::relative(to_pose2(s.anchor), to_pose2(refined.pose)),
                       config.loops.sigma_xy, radians(config.loops.sigma_degrees), true});
