@@ -68,6 +68,7 @@ const FieldFlags& graph_slam_flags() {
       {"loops.window_degrees", "--loop-degrees"},
       {"loops.min_score", "--loop-min-score"},
       {"loops.drift", "--loop-drift"},
+      {"loops.switch_off", "--loop-switch-off"},
       {"loops.sigma_xy", "--loop-sigma-xy"},
       {"loops.sigma_degrees", "--loop-sigma-degrees"},
       {"graph.local_sigma_xy", "--local-sigma-xy"},
@@ -249,6 +250,10 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::GraphSlamConfi
       "a closure moves a node at most the tracking window plus this many m per m travelled since "
       "the trajectory last met the submap",
       real_range(0, 1, false));
+  add("--loop-switch-off", c.loops.switch_off,
+      "after each optimization a closure off by more than this many of its sigmas is switched "
+      "off (and on again once back within)",
+      positive());
   add("--loop-sigma-xy", c.loops.sigma_xy, "a closure's spread in the graph (m)", positive());
   add("--loop-sigma-degrees", c.loops.sigma_degrees, "a closure's spread in the graph (degrees)",
       positive());

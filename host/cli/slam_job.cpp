@@ -157,6 +157,7 @@ nlohmann::json submap_settings_json(const slam::GraphSlamConfig& c, const core::
             {"window_degrees", l.window_degrees},
             {"min_score", l.min_score},
             {"drift", l.drift},
+            {"switch_off", l.switch_off},
             {"sigma_xy", l.sigma_xy},
             {"sigma_degrees", l.sigma_degrees}}},
           {"graph",
@@ -356,6 +357,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                       {"loop_searches", s.loop_searches},
                       {"loop_closures", s.loop_closures},
                       {"rejected_closures", s.rejected_closures},
+                      {"switched_off_closures", s.switched_off_closures},
                       {"optimizations", s.optimizations},
                       {"peak_pyramid_bytes", s.peak_pyramid_bytes},
                       {"settings", submap_settings_json(o.submap_config, r.run.codec)}});

@@ -273,6 +273,41 @@ TEST(PoseGraph, RobustEdgeResistsAnOutlier) {
   EXPECT_EQ(robust_summary.downweighted_edges, 1u);
 }
 
+// (d2) The same outlier switched off: its whitened error at the true poses is what the
+// measurement's offset gives in its sigmas, and with it inactive the graph solves to the truth,
+// as if the edge were not there; switched on again, it pulls as before.
+TEST(PoseGraph, AnInactiveEdgeAddsNothing) {
+  const std::vector<Pose2> truth = square_truth(10);
+  const std::size_t n = truth.size();
+  PoseGraph graph;
+  for (const Pose2& p : truth) graph.add_node(p);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    graph.add_edge(exact_edge(truth, i, i + 1, kOdoXy, kOdoTh));
+  Edge bad = exact_edge(truth, 10, 30, kOdoXy, kOdoTh, true);
+  bad.measured.x += 3.0;
+  bad.measured.y -= 2.0;
+  bad.measured.theta += 0.8;
+  graph.add_edge(bad);
+  const std::size_t bad_index = graph.edges() - 1;
+  EXPECT_NEAR(graph.whitened_error(bad_index),
+              std::sqrt((9.0 + 4.0) / (kOdoXy * kOdoXy) + 0.64 / (kOdoTh * kOdoTh)), 1e-9);
+  EXPECT_NEAR(graph.whitened_error(0), 0.0, 1e-12);
+
+  graph.set_active(bad_index, false);
+  EXPECT_FALSE(graph.edge_list()[bad_index].active);
+  const OptimizeSummary off = graph.optimize();
+  EXPECT_EQ(off.initial_cost, 0.0);
+  EXPECT_LT(max_error(graph.poses(), truth).xy, 1e-12);
+  EXPECT_EQ(off.downweighted_edges, 0u);
+
+  graph.set_active(bad_index, true);
+  const OptimizeSummary on = graph.optimize();
+  EXPECT_GT(on.initial_cost, 0.0);
+  EXPECT_GT(max_error(graph.poses(), truth).xy, 0.1);
+  EXPECT_THROW(graph.set_active(graph.edges(), false), std::out_of_range);
+  EXPECT_THROW((void)graph.whitened_error(graph.edges()), std::out_of_range);
+}
+
 // (e) Bad indices, sigmas, measurements and options throw.
 TEST(PoseGraph, RejectsBadInput) {
   PoseGraph graph;

@@ -506,9 +506,9 @@ void rejects_the_look_alike_corridor(core::Arithmetic arithmetic) {
   const TrajectoryError odometry = absolute_trajectory_error(scan_poses(sim.log), sim.truth);
   std::printf(
       "look-alike corridors: ATE %.3f m (max %.3f m), odometry %.3f m; %zu closures, "
-      "%zu rejected, of %zu searches\n",
+      "%zu rejected, of %zu searches; %zu switched off\n",
       slam.rmse, slam.max, odometry.rmse, stats.loop_closures, stats.rejected_closures,
-      stats.loop_searches);
+      stats.loop_searches, stats.switched_off_closures);
   EXPECT_GT(odometry.rmse, 1.0);
   EXPECT_GT(stats.rejected_closures, 0u);
   EXPECT_GT(stats.loop_closures, 0u);

@@ -60,6 +60,7 @@ double weight(double s, bool robust, double k) {
 double total_cost(const std::vector<core::Pose2>& poses, const std::vector<Edge>& edges, double k) {
   double cost = 0.0;
   for (const Edge& e : edges) {
+    if (!e.active) continue;
     const double s = squared_norm(residual(poses[e.from], poses[e.to], e.measured), e);
     cost += loss(s, e.robust, k);
   }
@@ -70,7 +71,7 @@ std::size_t count_downweighted(const std::vector<core::Pose2>& poses,
                                const std::vector<Edge>& edges, double k) {
   std::size_t n = 0;
   for (const Edge& e : edges) {
-    if (!e.robust) continue;
+    if (!e.robust || !e.active) continue;
     const double s = squared_norm(residual(poses[e.from], poses[e.to], e.measured), e);
     if (s > k * k) ++n;
   }
@@ -306,7 +307,7 @@ class NormalEquations {
     for (std::size_t n = 0; n < edges.size(); ++n) {
       const Edge& e = edges[n];
       const int bi = block_[e.from], bj = block_[e.to];
-      if (bi < 0 && bj < 0) continue;
+      if ((bi < 0 && bj < 0) || !e.active) continue;
       // With (u, v) = R(theta_from)^T (t_to - t_from) and info = diag(a, a, b), the Jacobians
       // are J_from = [-R^T, (v, -u); 0 0 -1] and J_to = [R^T, 0; 0 0 1], and the blocks of
       // J^T info J and J^T info r reduce to the closed forms below.
@@ -427,6 +428,17 @@ void PoseGraph::add_edge(const Edge& edge) {
     throw std::invalid_argument("pose graph edge: measured must be finite");
   }
   edges_.push_back(edge);
+}
+
+void PoseGraph::set_active(std::size_t edge, bool active) {
+  if (edge >= edges_.size()) throw std::out_of_range("pose graph: no edge " + std::to_string(edge));
+  edges_[edge].active = active;
+}
+
+double PoseGraph::whitened_error(std::size_t edge) const {
+  if (edge >= edges_.size()) throw std::out_of_range("pose graph: no edge " + std::to_string(edge));
+  const Edge& e = edges_[edge];
+  return std::sqrt(squared_norm(residual(poses_[e.from], poses_[e.to], e.measured), e));
 }
 
 void PoseGraph::set_fixed(std::size_t node, bool fixed) {

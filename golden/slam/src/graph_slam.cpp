@@ -167,6 +167,7 @@ void check_graph_slam_config(const GraphSlamConfig& c) {
   require(positive(c.loops.min_score) && c.loops.min_score <= 1.0, "loops.min_score",
           "must be in (0, 1]");
   require(non_negative(c.loops.drift) && c.loops.drift <= 1.0, "loops.drift", "must be in [0, 1]");
+  require(positive(c.loops.switch_off), "loops.switch_off", "must be finite and > 0");
   for (const auto& [v, name] : {std::pair{c.loops.sigma_xy, "loops.sigma_xy"},
                                 {c.loops.sigma_degrees, "loops.sigma_degrees"},
                                 {c.graph.local_sigma_xy, "graph.local_sigma_xy"},
@@ -414,6 +415,21 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     options.max_iterations = iterations;
     options.huber_scale = config.graph.huber;
     graph.optimize(options);
+    // Each closure re-checked where the optimized graph puts its two ends: one that the rest of
+    // the graph disagrees with by more than loops.switch_off sigmas is switched off, one that
+    // agrees again is switched on; if any changed, the graph is solved again without them.
+    bool changed = false;
+    stats.switched_off_closures = 0;
+    for (std::size_t e = 0; e < graph.edges(); ++e) {
+      if (!graph.edge_list()[e].robust) continue;
+      const bool agrees = graph.whitened_error(e) <= config.loops.switch_off;
+      if (agrees != graph.edge_list()[e].active) {
+        graph.set_active(e, agrees);
+        changed = true;
+      }
+      stats.switched_off_closures += !agrees;
+    }
+    if (changed) graph.optimize(options);
     ++stats.optimizations;
     pending_closures = 0;
     nodes_since_optimization = 0;

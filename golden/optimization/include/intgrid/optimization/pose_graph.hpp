@@ -21,6 +21,7 @@ struct Edge {
   double sigma_xy = 0.0;     // standard deviation of each position component (m), > 0
   double sigma_theta = 0.0;  // standard deviation of the heading (rad), > 0
   bool robust = false;       // Huber loss (loop closures)
+  bool active = true;        // an inactive edge adds nothing: a loop closure switched off
 };
 
 struct OptimizeOptions {
@@ -33,7 +34,7 @@ struct OptimizeSummary {
   int iterations = 0;         // factorizations done
   double initial_cost = 0.0;  // 0.5 sum rho(|r|^2), rho(s) = s or 2 k sqrt(s) - k^2 (Huber)
   double final_cost = 0.0;
-  std::size_t downweighted_edges = 0;  // robust edges past huber_scale at the final poses
+  std::size_t downweighted_edges = 0;  // active robust edges past huber_scale at the final poses
 };
 
 class PoseGraph {
@@ -55,6 +56,12 @@ class PoseGraph {
   std::size_t nodes() const { return poses_.size(); }
   std::size_t edges() const { return edges_.size(); }
   const std::vector<Edge>& edge_list() const { return edges_; }
+  // Switches an edge on or off (Edge::active). Throws std::out_of_range for an index that is no
+  // edge.
+  void set_active(std::size_t edge, bool active);
+  // How far the current poses are from an edge's measurement, in its sigmas: the norm of its
+  // whitened residual (active or not). Throws std::out_of_range for an index that is no edge.
+  double whitened_error(std::size_t edge) const;
 
   // Moves the free nodes to a minimum of the cost (sparse Levenberg-Marquardt on the normal
   // equations, Huber by iteratively reweighted least squares). The headings of the nodes it

@@ -100,6 +100,11 @@ struct GraphSlamConfig {
     double drift = 0.05;
     double sigma_xy = 0.03;  // m, the closure's spread in the graph
     double sigma_degrees = 0.3;
+    // After each optimization a closure whose two ends the graph puts further apart than its
+    // measurement by this many of its sigmas (whitened residual) is switched off, and one back
+    // within it switched on again: a wrong closure that passed the drift check, outvoted by the
+    // rest of the graph, stops pulling at it (the Huber loss only weakens it).
+    double switch_off = 10.0;
   } loops;
 
   // The pose graph.
@@ -133,11 +138,12 @@ struct GraphSlamStats {
   std::size_t scans = 0;
   std::size_t nodes = 0;
   std::size_t submaps = 0;
-  std::size_t wide_searches = 0;      // scans the narrow window did not match well
-  std::size_t unmatched_scans = 0;    // too few hits or no map yet: odometry only
-  std::size_t loop_searches = 0;      // node-submap pairs searched
-  std::size_t loop_closures = 0;      // of them, matched and added to the graph
-  std::size_t rejected_closures = 0;  // matched, but further off than the drift allows
+  std::size_t wide_searches = 0;          // scans the narrow window did not match well
+  std::size_t unmatched_scans = 0;        // too few hits or no map yet: odometry only
+  std::size_t loop_searches = 0;          // node-submap pairs searched
+  std::size_t loop_closures = 0;          // of them, matched and added to the graph
+  std::size_t rejected_closures = 0;      // matched, but further off than the drift allows
+  std::size_t switched_off_closures = 0;  // of the loop closures, off after the last optimization
   std::size_t optimizations = 0;
   std::size_t readings = 0;
   std::size_t unusable_readings = 0;
