@@ -369,15 +369,6 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
       const core::Pose2 guess_pose =
           core::compose(to_pose2(s.anchor), core::relative(submap_pose, global));
       SlamPose guess = to_slam_pose(guess_pose);
-      ++stats.loop_searches;
-      const auto min_score = static_cast<MatchScore<Cell>>(
-          std::llround(static_cast<double>(full) * config.loops.min_score * s.own_score));
-      const Match<Cell> lattice =
-          match_branch_and_bound(pyramid_of(id), tracker.rays(), points, guess, loop_window,
-                                 tracker.setup().max_index, min_score);
-      if (!lattice.found) continue;
-      const Match<Cell> refined = refine_match(*s.grid, tracker.rays(), points, guess, loop_window,
-                                               tracker.setup().max_index, lattice);
       // A correct closure puts the node within what the front end can have drifted since the
       // trajectory was last tied to this submap (its own nodes or the latest closure to it); a
       // scan of a look-alike corridor matches a submap of its twin well, but metres away. Two
@@ -389,14 +380,31 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
       const Node& tied = nodes[s.linked_node];
       const core::Pose2 chain = core::relative(graph.poses()[tied.vertex], global);
       const core::Pose2 from_tie = core::compose(to_pose2(s.linked_pose), chain);
+      // A heading error along the chain moves the node by its distance from the tie.
+      const double lever = std::hypot(chain.x, chain.y);
+      const double reach =
+          config.tracking.window +
+          config.loops.drift * (node.travel - tied.travel + lever * (node.turn - tied.turn));
+      // The search covers both places' reach and no more (at most loops.window): the window
+      // follows the uncertainty grown since the tie, small just after one, wide after a long
+      // way round.
+      SearchWindow window = loop_window;
+      const double span = reach + std::hypot(from_tie.x - guess_pose.x, from_tie.y - guess_pose.y);
+      window.cells = std::min(window.cells,
+                              static_cast<int>(std::ceil(span * 1000.0 / tracker.setup().cell_mm)));
+      ++stats.loop_searches;
+      const auto min_score = static_cast<MatchScore<Cell>>(
+          std::llround(static_cast<double>(full) * config.loops.min_score * s.own_score));
+      const Match<Cell> lattice =
+          match_branch_and_bound(pyramid_of(id), tracker.rays(), points, guess, window,
+                                 tracker.setup().max_index, min_score);
+      if (!lattice.found) continue;
+      const Match<Cell> refined = refine_match(*s.grid, tracker.rays(), points, guess, window,
+                                               tracker.setup().max_index, lattice);
       const core::Pose2 found = to_pose2(refined.pose);
       const double jump = std::min(std::hypot(found.x - from_tie.x, found.y - from_tie.y),
                                    std::hypot(found.x - guess_pose.x, found.y - guess_pose.y));
-      // A heading error along the chain moves the node by its distance from the tie.
-      const double lever = std::hypot(chain.x, chain.y);
-      const double drift =
-          config.loops.drift * (node.travel - tied.travel + lever * (node.turn - tied.turn));
-      if (jump > config.tracking.window + drift) {
+      if (jump > reach) {
         ++stats.rejected_closures;
         continue;
       }
