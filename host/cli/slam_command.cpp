@@ -239,7 +239,9 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::GraphSlamConfi
       non_negative());
   add("--loop-submaps", c.loops.submaps, "of the candidates, the nearest this many are searched",
       whole_at_least(1));
-  add("--loop-window", c.loops.window, "translations searched: +- this around the estimate (m)",
+  add("--loop-window", c.loops.window,
+      "translations searched: at most +- this around the estimate (m); less where the drift check "
+      "reaches less",
       non_negative());
   add("--loop-degrees", c.loops.window_degrees, "headings searched: +- this (degrees)",
       non_negative());

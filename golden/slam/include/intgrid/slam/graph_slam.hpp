@@ -82,7 +82,9 @@ struct GraphSlamConfig {
     int every = 4;             // every how many nodes a search is made
     double max_distance = 20;  // m: submaps whose middle node lies this near the node's estimate
     int submaps = 4;           // of them, the nearest searched
-    double window = 5.0;       // m, +- around the estimate
+    // m, +- around the estimate at most: each search covers the drift check's reach (below),
+    // which grows with the way since the last tie to the submap, up to this.
+    double window = 5.0;
     double window_degrees = 25;
     // A closure scores at least this fraction of what the submap's own nodes score in it (their
     // median), not of a fixed full score, which a sensor of half the beams never approaches.
