@@ -1,5 +1,5 @@
 // The per-scan path of GridSlam: included only by the files that instantiate it
-// (slam_integer.cpp, slam_double.cpp). Integers only, apart from what the Probabilities
+// (grid_slam_integer.cpp, grid_slam_double.cpp). Integers only, apart from what the Probabilities
 // type does; the integer instantiation is built without floating-point registers.
 #pragma once
 

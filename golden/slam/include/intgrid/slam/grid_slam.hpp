@@ -7,7 +7,7 @@
 // angle units (2^16 a turn), geometry uses a fixed-point sine table, rays are walked cell by
 // cell with exact integer comparisons, and the map M is an S_eps grid in both arithmetics.
 // The arithmetic of probabilities is the template parameter: double precision
-// (DoubleProbabilities) or U_gamma indices (IndexProbabilities, slam_probabilities.hpp). Every
+// (DoubleProbabilities) or U_gamma indices (IndexProbabilities, probabilities.hpp). Every
 // table that needs floating point to build is built once, before the first scan, by
 // make_slam_setup.
 #pragma once
