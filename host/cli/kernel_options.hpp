@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "cli/options.hpp"
 
@@ -27,24 +28,36 @@ namespace intgrid::cli {
   } catch (const std::invalid_argument&) {
     // no field leads: one of the kernel's limits below
   }
-  static const std::pair<std::string_view, std::string_view> kLimits[] = {
-      {"sigma", "--sigma"},
-      {"reading fraction", "--reading-frac"},
-      {"log fraction", "--log-frac"},
-      {"quadratic coefficient fraction", "--quad-coef-frac"},
-      {"reading", "--rings"},  // reach, (R + window) << reading_frac, must fit the port
-      {"quadratic term", "--cell"},
-      {"log", "--rings"},  // the ring prior (R - 1) * A grows the log words
-      {"multiplier", "--sectors"},
-      {"conditions", "--sectors"}};
+  // The message's words, the option that moves the limit most directly, and the others that
+  // move it too (named after the message, so that a user who set one of them finds it).
+  struct Limit {
+    std::string_view needle, flag;
+    std::vector<std::string_view> also;
+  };
+  static const Limit kLimits[] = {
+      {"sigma", "--sigma", {}},
+      {"reading fraction", "--reading-frac", {}},
+      {"log fraction", "--log-frac", {}},
+      {"quadratic coefficient fraction", "--quad-coef-frac", {}},
+      {"reading", "--rings", {}},  // reach, (R + window) << reading_frac, must fit the port
+      // bits a cell^2 at the least sigma times the window, which the spread of sigma widens
+      {"quadratic term", "--cell", {"--sigma", "--k-d"}},
+      {"log", "--rings", {}},  // the ring prior (R - 1) * A grows the log words
+      {"multiplier", "--sectors", {}},
+      {"conditions", "--sectors", {}}};
   const auto has = [&](std::string_view flag) {
     for (const FieldFlag& f : flags)
       if (f.flag == flag) return true;
     return false;
   };
-  for (const auto& [needle, flag] : kLimits)
-    if (has(flag) && message.find(needle) != std::string::npos)
-      bad_option(std::string(flag), "the kernel cannot hold this configuration: " + message);
+  for (const Limit& limit : kLimits) {
+    if (!has(limit.flag) || message.find(limit.needle) == std::string::npos) continue;
+    std::string also;
+    for (const std::string_view flag : limit.also)
+      if (has(flag)) also += std::string(also.empty() ? "" : ", ") + std::string(flag);
+    bad_option(std::string(limit.flag), "the kernel cannot hold this configuration: " + message +
+                                            (also.empty() ? "" : " (" + also + " move it too)"));
+  }
   throw std::invalid_argument(message);
 }
 

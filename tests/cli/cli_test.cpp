@@ -1548,6 +1548,8 @@ TEST_F(Cli, HwConfigRefusesWhatTheKernelCannotHoldNamingTheOption) {
       {"--sectors 17", "--sectors"},
       {"--rings 300", "--rings"},  // reach (300 + window) << 8 passes the 16-bit reading port
       {"--sigma 50 --cell 0.01", "--sigma"},
+      // the quadratic term's limit: led by --cell, and the --k-d that the user set is named too
+      {"--k-d 10", "--k-d move it too"},
       {"--bits 1", "--bits"},
       {"--eps 0.5", "--eps"},
       {"--fov 0", "--fov"},
