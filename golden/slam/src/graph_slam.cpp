@@ -214,8 +214,8 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     // The trajectory's latest tie to it: its latest own node, or the node of the latest closure
     // to it, and where that node lies in its frame (the local frame): the front end's pose, or
     // the closure's.
-    std::size_t linked_node = 0;
-    SlamPose linked_pose{};
+    std::size_t tied_node = 0;
+    SlamPose tied_pose{};
   };
   struct ScanRecord {
     std::size_t node;  // the last node at or before it (npos: none yet)
@@ -328,8 +328,8 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
       graph.add_edge({s.vertex, node.vertex, core::relative(to_pose2(s.anchor), local),
                       g.local_sigma_xy, radians(g.local_sigma_degrees), false});
       s.nodes.push_back(nodes.size());
-      s.linked_node = nodes.size();
-      s.linked_pose = step.pose;
+      s.tied_node = nodes.size();
+      s.tied_pose = step.pose;
     }
     if (!nodes.empty())
       graph.add_edge({nodes.back().vertex, node.vertex,
@@ -377,9 +377,9 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
       // since the last optimization has not moved the estimate yet, and the next ones to the
       // same place agree with it, not with the estimate; a wrong closure that slipped through
       // must not turn the true ones after it away, and those agree with the estimate.
-      const Node& tied = nodes[s.linked_node];
+      const Node& tied = nodes[s.tied_node];
       const core::Pose2 chain = core::relative(graph.poses()[tied.vertex], global);
-      const core::Pose2 from_tie = core::compose(to_pose2(s.linked_pose), chain);
+      const core::Pose2 from_tie = core::compose(to_pose2(s.tied_pose), chain);
       // A heading error along the chain moves the node by its distance from the tie.
       const double lever = std::hypot(chain.x, chain.y);
       const double reach =
@@ -408,8 +408,8 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
         ++stats.rejected_closures;
         continue;
       }
-      s.linked_node = nodes.size() - 1;
-      s.linked_pose = refined.pose;
+      s.tied_node = nodes.size() - 1;
+      s.tied_pose = refined.pose;
       graph.add_edge({s.vertex, node.vertex,
                       core::relative(to_pose2(s.anchor), to_pose2(refined.pose)),
                       config.loops.sigma_xy, radians(config.loops.sigma_degrees), true});

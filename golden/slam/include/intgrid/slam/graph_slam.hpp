@@ -94,11 +94,11 @@ struct GraphSlamConfig {
     // and 0.052 m (0.036 and 0.062 with the earlier 0.45 of the full score; docs/results.md).
     double min_score = 0.8;
     // A closure may put the node at most the front end's window (tracking.window) plus this
-    // many metres per metre travelled (and per metre of lever per radian turned) away from
-    // where the trajectory's latest tie to the submap (its own nodes or an accepted closure to
-    // it) puts it through the chain of nodes since; one further off is rejected: a look-alike
-    // place, not this one. Measured from the tie rather than from the graph's estimate, which
-    // closures accepted since the last optimization have not moved yet.
+    // many metres per metre travelled (and per metre of lever per radian turned) since the
+    // trajectory's latest tie to the submap (its own nodes or an accepted closure to it) away
+    // from where the graph's estimate or that tie, carried through the chain of nodes since,
+    // puts it; one further off is rejected: a look-alike place, not this one. The tie counts
+    // because closures accepted since the last optimization have not moved the estimate yet.
     double drift = 0.05;
     double sigma_xy = 0.03;  // m, the closure's spread in the graph
     double sigma_degrees = 0.3;
