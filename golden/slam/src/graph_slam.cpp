@@ -530,7 +530,8 @@ double pyramid_cache_bytes(const GraphSlamConfig& config, core::Arithmetic arith
                                            0.0, static_cast<std::int32_t>(millimetres(config.cell)),
                                            core::kAngleUnitsPerTurn / config.headings);
   const double cell_bytes = arithmetic == core::Arithmetic::integer ? 1.0 : sizeof(LogOdds);
-  const double one = (pyramid_levels(loops.cells) + 1.0) * submap_cells * cell_bytes;
+  // The grid's own cells, then one byte a cell for each level above it (MaxPyramid).
+  const double one = (cell_bytes + pyramid_levels(loops.cells)) * submap_cells;
   return std::min(static_cast<double>(kPyramidCacheSubmaps) * one,
                   std::max(static_cast<double>(kPyramidCacheBytes), one));
 }

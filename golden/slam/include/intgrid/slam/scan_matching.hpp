@@ -13,6 +13,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <type_traits>
@@ -155,50 +156,72 @@ Match<Cell> match_exhaustive(const LocalGrid<Cell>& grid, const core::IntegerRay
   return best;
 }
 
-// Max-pooled copies of a grid: level d holds, for each cell (x, y), the largest cell of
-// [x, x + 2^d) x [y, y + 2^d) (cells outside the grid count 0).
+// Max-pooled copies of a grid: level 0 is the grid itself; level d >= 1 holds, for each cell
+// (x, y), the largest cell of [x, x + 2^d) x [y, y + 2^d) (cells outside the grid count 0) as a
+// whole index: the cell itself for S_eps cells, its ceiling for LogOdds. A ceiling still bounds
+// every score from above, so branch and bound finds the same maximum, and the levels take one
+// byte a cell in both arithmetics: the double pyramid held 8 (a submap's 9 levels at 5 m / 5 cm,
+// 80 MB, so that the loop search's cache held two submaps and rebuilt one for most searches).
+// Cells hold at most the codec's largest index, which S_eps keeps within std::int8_t.
 template <class Cell>
 class MaxPyramid {
  public:
-  MaxPyramid(const LocalGrid<Cell>& grid, int levels) : x0_(grid.x0()), y0_(grid.y0()) {
-    levels_.resize(static_cast<std::size_t>(levels) + 1);
-    Level& base = levels_[0];
-    base.width = grid.width();
-    base.height = grid.height();
-    base.cells.assign(grid.cells().begin(), grid.cells().end());
-    for (int d = 0; d < levels; ++d) {
-      const Level& fine = levels_[static_cast<std::size_t>(d)];
-      levels_[static_cast<std::size_t>(d) + 1] = coarser(fine, 1 << d);
-    }
+  MaxPyramid(const LocalGrid<Cell>& grid, int levels)
+      : x0_(grid.x0()), y0_(grid.y0()), cells_(grid.cells().begin(), grid.cells().end()) {
+    width_ = grid.width();
+    height_ = grid.height();
+    bounds_.resize(static_cast<std::size_t>(levels));
+    if (levels == 0) return;
+    Level whole{width_, height_, std::vector<std::int8_t>(cells_.size())};
+    std::transform(cells_.begin(), cells_.end(), whole.cells.begin(), whole_index_above);
+    bounds_[0] = coarser(whole, 1);
+    for (int d = 1; d < levels; ++d)
+      bounds_[static_cast<std::size_t>(d)] =
+          coarser(bounds_[static_cast<std::size_t>(d) - 1], 1 << d);
   }
 
-  int levels() const { return static_cast<int>(levels_.size()) - 1; }
-  // The largest grid cell of [cx, cx + 2^d) x [cy, cy + 2^d).
-  Cell at(int d, int cx, int cy) const {
+  int levels() const { return static_cast<int>(bounds_.size()); }
+  // The grid's cell (cx, cy): level 0.
+  Cell cell(int cx, int cy) const {
+    const int x = cx - x0_, y = cy - y0_;
+    if (static_cast<unsigned>(x) >= static_cast<unsigned>(width_) ||
+        static_cast<unsigned>(y) >= static_cast<unsigned>(height_))
+      return Cell{};
+    return cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                  static_cast<std::size_t>(x)];
+  }
+  // The largest grid cell of [cx, cx + 2^d) x [cy, cy + 2^d) as a whole index (rounded up), d >= 1.
+  std::int8_t bound(int d, int cx, int cy) const {
     const int shift = (1 << d) - 1;
-    return levels_[static_cast<std::size_t>(d)].get(cx - x0_ + shift, cy - y0_ + shift);
+    return bounds_[static_cast<std::size_t>(d) - 1].get(cx - x0_ + shift, cy - y0_ + shift);
   }
   std::size_t bytes() const {
-    std::size_t total = 0;
-    for (const Level& l : levels_) total += l.cells.size() * sizeof(Cell);
+    std::size_t total = cells_.size() * sizeof(Cell);
+    for (const Level& l : bounds_) total += l.cells.size();
     return total;
   }
 
  private:
   struct Level {
     int width = 0, height = 0;
-    std::vector<Cell> cells;
-    Cell get(int x, int y) const {
+    std::vector<std::int8_t> cells;
+    std::int8_t get(int x, int y) const {
       if (static_cast<unsigned>(x) >= static_cast<unsigned>(width) ||
           static_cast<unsigned>(y) >= static_cast<unsigned>(height))
-        return Cell{};
+        return 0;
       return cells[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
                    static_cast<std::size_t>(x)];
     }
   };
+  static std::int8_t whole_index_above(Cell v) {
+    if constexpr (std::is_same_v<Cell, LogOdds>)
+      return static_cast<std::int8_t>(std::ceil(v.steps));
+    else
+      return v;
+  }
   // Level d + 1 from level d (h = 2^d): its cell (x, y) is the largest of the fine cells
   // (x - h, y - h), (x, y - h), (x - h, y) and (x, y), outside cells counting 0; taken as the
-  // larger of two row maxima (the same value: max is exact and keeps the first of equals).
+  // larger of two row maxima.
   static Level coarser(const Level& fine, int h) {
     Level coarse;
     coarse.width = fine.width + h;
@@ -206,10 +229,10 @@ class MaxPyramid {
     coarse.cells.resize(static_cast<std::size_t>(coarse.width) *
                         static_cast<std::size_t>(coarse.height));
     // The larger of fine cells (x - h, r) and (x, r), for a row r that may lie outside.
-    const auto row_max = [&](const Cell* row, int x) {
-      if (row == nullptr) return Cell{};
-      const Cell left = x >= h ? row[x - h] : Cell{};
-      const Cell here = x < fine.width ? row[x] : Cell{};
+    const auto row_max = [&](const std::int8_t* row, int x) {
+      if (row == nullptr) return std::int8_t{0};
+      const std::int8_t left = x >= h ? row[x - h] : std::int8_t{0};
+      const std::int8_t here = x < fine.width ? row[x] : std::int8_t{0};
       return std::max(left, here);
     };
     for (int y = 0; y < coarse.height; ++y) {
@@ -218,9 +241,9 @@ class MaxPyramid {
                    ? &fine.cells[static_cast<std::size_t>(r) * static_cast<std::size_t>(fine.width)]
                    : nullptr;
       };
-      const Cell* above = row(y - h);
-      const Cell* here = row(y);
-      Cell* out =
+      const std::int8_t* above = row(y - h);
+      const std::int8_t* here = row(y);
+      std::int8_t* out =
           &coarse.cells[static_cast<std::size_t>(y) * static_cast<std::size_t>(coarse.width)];
       for (int x = 0; x < coarse.width; ++x) out[x] = std::max(row_max(above, x), row_max(here, x));
     }
@@ -228,7 +251,9 @@ class MaxPyramid {
   }
 
   int x0_, y0_;
-  std::vector<Level> levels_;
+  int width_ = 0, height_ = 0;
+  std::vector<Cell> cells_;
+  std::vector<Level> bounds_;  // levels 1 .. levels
 };
 
 // The levels a window of `cells` needs: 2^levels >= 2 cells + 1.
@@ -274,8 +299,11 @@ Match<Cell> match_branch_and_bound(const MaxPyramid<Cell>& pyramid, const core::
     const auto& hy = cy[static_cast<std::size_t>(k)];
     S sum{};
     const int ox = i - window.cells, oy = j - window.cells;
-    for (std::size_t p = 0; p < hx.size(); ++p)
-      sum += score_value(pyramid.at(d, hx[p] + ox, hy[p] + oy));
+    if (d == 0)
+      for (std::size_t p = 0; p < hx.size(); ++p)
+        sum += score_value(pyramid.cell(hx[p] + ox, hy[p] + oy));
+    else
+      for (std::size_t p = 0; p < hx.size(); ++p) sum += pyramid.bound(d, hx[p] + ox, hy[p] + oy);
     return sum - matching_detail::prior_cost<Cell>(
                      window, full, std::int64_t{nearest(i, d)} * c, std::int64_t{nearest(j, d)} * c,
                      std::int64_t{k - window.steps} * window.step_units);
