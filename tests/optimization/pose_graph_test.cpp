@@ -308,6 +308,50 @@ TEST(PoseGraph, AnInactiveEdgeAddsNothing) {
   EXPECT_THROW((void)graph.whitened_error(graph.edges()), std::out_of_range);
 }
 
+// A measurement weak along an axis: two measurements of node 1 in node 0's frame (fixed at a
+// turned pose), one isotropic and loose, one tight but with weak_weight of its information
+// along weak_axis. With the headings agreeing, the answer in node 0's frame is the
+// information-weighted mean (A_1 + A_2)^-1 (A_1 m_1 + A_2 m_2), solved here in closed form.
+TEST(PoseGraph, AWeakEdgeGivesItsInformationAlongItsAxisOnly) {
+  const Pose2 origin{1.0, 2.0, 0.7};
+  const Pose2 loose{1.0, 0.5, 0.1}, tight{2.0, -0.5, 0.1};
+  const double axis = 0.4;
+  for (const double weak_weight : {0.0, 0.3, 1.0}) {
+    PoseGraph graph;
+    graph.add_node(origin);
+    graph.add_node(compose(origin, {1.5, 0.0, 0.0}));
+    graph.add_edge({0, 1, loose, 1.0, 0.1});
+    Edge weak{0, 1, tight, 0.1, 0.1};
+    weak.weak_axis = axis;
+    weak.weak_weight = weak_weight;
+    graph.add_edge(weak);
+    const double c = std::cos(axis), s = std::sin(axis);
+    // A_2 = (I - (1 - w) d d^T) / 0.01, A_1 = I.
+    const double axx = (1.0 - (1.0 - weak_weight) * c * c) / 0.01,
+                 axy = -(1.0 - weak_weight) * c * s / 0.01,
+                 ayy = (1.0 - (1.0 - weak_weight) * s * s) / 0.01;
+    const double hxx = 1.0 + axx, hxy = axy, hyy = 1.0 + ayy;
+    const double bx = loose.x + axx * tight.x + axy * tight.y,
+                 by = loose.y + axy * tight.x + ayy * tight.y;
+    const double det = hxx * hyy - hxy * hxy;
+    const Pose2 expected =
+        compose(origin, {(hyy * bx - hxy * by) / det, (hxx * by - hxy * bx) / det, loose.theta});
+    graph.optimize();
+    const Pose2& got = graph.poses()[1];
+    std::printf("[optimization] weak weight %.1f: (%.6f, %.6f) against (%.6f, %.6f)\n", weak_weight,
+                got.x, got.y, expected.x, expected.y);
+    EXPECT_NEAR(got.x, expected.x, 1e-9) << weak_weight;
+    EXPECT_NEAR(got.y, expected.y, 1e-9) << weak_weight;
+    EXPECT_NEAR(wrap_angle(got.theta - expected.theta), 0.0, 1e-9) << weak_weight;
+    // The tight measurement's whitened error: its residual's parts across and along the axis.
+    const Pose2 local = relative(origin, got);
+    const double rx = local.x - tight.x, ry = local.y - tight.y;
+    const double along = rx * c + ry * s, across = -rx * s + ry * c;
+    EXPECT_NEAR(graph.whitened_error(1),
+                std::sqrt((across * across + weak_weight * along * along) / 0.01), 1e-9);
+  }
+}
+
 // (e) Bad indices, sigmas, measurements and options throw.
 TEST(PoseGraph, RejectsBadInput) {
   PoseGraph graph;
@@ -327,6 +371,14 @@ TEST(PoseGraph, RejectsBadInput) {
   EXPECT_THROW(graph.add_edge({0, 1, m, 0.1, inf}), std::invalid_argument);
   EXPECT_THROW(graph.add_edge({0, 1, {nan, 0.0, 0.0}, 0.1, 0.1}), std::invalid_argument);
   EXPECT_THROW(graph.add_edge(Edge{}), std::invalid_argument);  // sigmas default to 0
+  for (const double weak_weight : {-0.1, 1.5, nan}) {
+    Edge e{0, 1, m, 0.1, 0.1};
+    e.weak_weight = weak_weight;
+    EXPECT_THROW(graph.add_edge(e), std::invalid_argument) << weak_weight;
+  }
+  Edge no_axis{0, 1, m, 0.1, 0.1};
+  no_axis.weak_axis = inf;
+  EXPECT_THROW(graph.add_edge(no_axis), std::invalid_argument);
   EXPECT_EQ(graph.edges(), 0u);
   EXPECT_NO_THROW(graph.add_edge({0, 1, m, 0.1, 0.1}));
   EXPECT_EQ(graph.edges(), 1u);

@@ -14,8 +14,8 @@ using test::present;
 using test::run_segment;
 using test::Segment;
 
-// Intel's odometry slips by degrees: 0.21 m and 3.9 degrees on this segment; the SLAM 0.045 m
-// and 0.25 degree (integer), 0.062 m and 0.28 degree (double).
+// Intel's odometry slips by degrees: 0.21 m and 3.9 degrees on this segment; the SLAM 0.022 m
+// and 0.26 degree (integer), 0.030 m and 0.26 degree (double).
 TEST(GraphSlamBenchmark, IntelSegmentBeatsTheOdometryFarInBothArithmetics) {
   if (!present("intel"))
     GTEST_SKIP() << intgrid::test::absent(intgrid::test::benchmark_dir() / "intel.clf");

@@ -40,11 +40,17 @@ Eigen::Vector3d residual(const core::Pose2& a, const core::Pose2& b, const core:
           core::wrap_angle(b.theta - a.theta - m.theta)};
 }
 
+// The information of an edge's translation, in `from`'s frame (Edge).
+Eigen::Matrix2d translation_information(const Edge& e) {
+  const Eigen::Vector2d d(std::cos(e.weak_axis), std::sin(e.weak_axis));
+  return (Eigen::Matrix2d::Identity() - (1.0 - e.weak_weight) * d * d.transpose()) /
+         (e.sigma_xy * e.sigma_xy);
+}
+
 // The squared whitened norm of a residual.
 double squared_norm(const Eigen::Vector3d& r, const Edge& e) {
-  const double ixy = 1.0 / (e.sigma_xy * e.sigma_xy);
-  const double ith = 1.0 / (e.sigma_theta * e.sigma_theta);
-  return (r.x() * r.x() + r.y() * r.y()) * ixy + r.z() * r.z() * ith;
+  const Eigen::Vector2d t = r.head<2>();
+  return t.dot(translation_information(e) * t) + r.z() * r.z() / (e.sigma_theta * e.sigma_theta);
 }
 
 // rho(s): s, or for a robust edge past k sigmas the Huber loss 2 k sqrt(s) - k^2.
@@ -308,44 +314,49 @@ class NormalEquations {
       const Edge& e = edges[n];
       const int bi = block_[e.from], bj = block_[e.to];
       if ((bi < 0 && bj < 0) || !e.active) continue;
-      // With (u, v) = R(theta_from)^T (t_to - t_from) and info = diag(a, a, b), the Jacobians
-      // are J_from = [-R^T, (v, -u); 0 0 -1] and J_to = [R^T, 0; 0 0 1], and the blocks of
-      // J^T info J and J^T info r reduce to the closed forms below.
+      // With (u, v) = R(theta_from)^T (t_to - t_from), w = (v, -u), the translation's
+      // information A and the heading's b, the Jacobians are J_from = [-R^T, w; 0 0 -1] and
+      // J_to = [R^T, 0; 0 0 1], so that J^T info J and J^T info r have the blocks below.
       const core::Pose2& pa = poses[e.from];
       const core::Pose2& pb = poses[e.to];
       const double c = std::cos(pa.theta), s = std::sin(pa.theta);
-      const double dx = pb.x - pa.x, dy = pb.y - pa.y;
-      const double u = c * dx + s * dy, v = -s * dx + c * dy;
-      const double r0 = u - e.measured.x, r1 = v - e.measured.y;
+      Eigen::Matrix2d rotation;
+      rotation << c, -s, s, c;
+      const Eigen::Vector2d t = rotation.transpose() * Eigen::Vector2d(pb.x - pa.x, pb.y - pa.y);
+      const Eigen::Vector2d w(t.y(), -t.x());
+      const Eigen::Vector2d r = t - Eigen::Vector2d(e.measured.x, e.measured.y);
       const double r2 = core::wrap_angle(pb.theta - pa.theta - e.measured.theta);
-      const double ixy = 1.0 / (e.sigma_xy * e.sigma_xy);
+      const Eigen::Matrix2d info = translation_information(e);
       const double ith = 1.0 / (e.sigma_theta * e.sigma_theta);
-      const double w = weight((r0 * r0 + r1 * r1) * ixy + r2 * r2 * ith, e.robust, k);
-      const double a = w * ixy, b = w * ith;
-      const double ar0 = a * r0, ar1 = a * r1, br2 = b * r2;
-      const double gx = -c * ar0 + s * ar1, gy = -s * ar0 - c * ar1;
-      const double hxt = -a * (c * v + s * u), hyt = a * (c * u - s * v);
+      const double weight_here = weight(r.dot(info * r) + r2 * r2 * ith, e.robust, k);
+      const Eigen::Matrix2d a = weight_here * info;
+      const double b = weight_here * ith;
+      const Eigen::Matrix2d rar = rotation * a * rotation.transpose();  // the translations' block
+      const Eigen::Vector2d raw =
+          rotation * (a * w);  // J_to's translation against J_from's heading
+      const Eigen::Vector2d ra_r = rotation * (a * r);
+      const double br2 = b * r2;
       if (bi >= 0) {
         Block& h = diagonal_[static_cast<std::size_t>(bi)];
-        h(0, 0) += a;
-        h(1, 1) += a;
-        h(0, 2) += hxt;
-        h(2, 0) += hxt;
-        h(1, 2) += hyt;
-        h(2, 1) += hyt;
-        h(2, 2) += a * (u * u + v * v) + b;
-        g_.segment<3>(3 * bi) += Eigen::Vector3d(gx, gy, v * ar0 - u * ar1 - br2);
+        h.topLeftCorner<2, 2>() += rar;
+        h.block<2, 1>(0, 2) -= raw;
+        h.block<1, 2>(2, 0) -= raw.transpose();
+        h(2, 2) += w.dot(a * w) + b;
+        g_.segment<2>(3 * bi) -= ra_r;
+        g_(3 * bi + 2) += w.dot(a * r) - br2;
       }
       if (bj >= 0) {
         Block& h = diagonal_[static_cast<std::size_t>(bj)];
-        h(0, 0) += a;
-        h(1, 1) += a;
+        h.topLeftCorner<2, 2>() += rar;
         h(2, 2) += b;
-        g_.segment<3>(3 * bj) += Eigen::Vector3d(-gx, -gy, br2);
+        g_.segment<2>(3 * bj) += ra_r;
+        g_(3 * bj + 2) += br2;
       }
       if (bi >= 0 && bj >= 0) {
-        Block h;  // J_from^T info J_to
-        h << -a, 0.0, 0.0, 0.0, -a, 0.0, -hxt, -hyt, -b;
+        Block h = Block::Zero();  // J_from^T info J_to
+        h.topLeftCorner<2, 2>() = -rar;
+        h.block<1, 2>(2, 0) = raw.transpose();
+        h(2, 2) = -b;
         Block& target = upper_[static_cast<std::size_t>(slots_[n].block)];
         if (slots_[n].from_above) {
           target += h;
@@ -423,6 +434,12 @@ void PoseGraph::add_edge(const Edge& edge) {
   }
   if (!is_positive(edge.sigma_theta)) {
     throw std::invalid_argument("pose graph edge: sigma_theta must be finite and > 0");
+  }
+  if (!std::isfinite(edge.weak_axis)) {
+    throw std::invalid_argument("pose graph edge: weak_axis must be finite");
+  }
+  if (!(edge.weak_weight >= 0.0 && edge.weak_weight <= 1.0)) {
+    throw std::invalid_argument("pose graph edge: weak_weight must be in [0, 1]");
   }
   if (!is_finite(edge.measured)) {
     throw std::invalid_argument("pose graph edge: measured must be finite");

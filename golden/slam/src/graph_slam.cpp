@@ -408,11 +408,35 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
         ++stats.rejected_closures;
         continue;
       }
+      // What the match fixes of the node's position, direction by direction: the evidence's
+      // curvature there. The closure's information along the least sharp direction is its
+      // curvature as a fraction of the sharpest's (a match in a corridor fixes nothing along
+      // it, and a full-weight closure would pin the node wherever noise put it); a match that
+      // peaks in no direction is no closure.
+      const EvidenceCurvature<Cell> k =
+          evidence_curvature(*s.grid, tracker.rays(), points, refined.pose);
+      const double xx = static_cast<double>(k.xx), xy = static_cast<double>(k.xy),
+                   yy = static_cast<double>(k.yy);
+      const double spread = std::hypot(0.5 * (xx - yy), xy);
+      const double sharpest = 0.5 * (xx + yy) + spread, least = 0.5 * (xx + yy) - spread;
+      if (!(sharpest > 0.0)) {
+        ++stats.rejected_closures;
+        continue;
+      }
       s.tied_node = nodes.size() - 1;
       s.tied_pose = refined.pose;
-      graph.add_edge({s.vertex, node.vertex,
-                      core::relative(to_pose2(s.anchor), to_pose2(refined.pose)),
-                      config.loops.sigma_xy, radians(config.loops.sigma_degrees), true});
+      optimization::Edge closure{s.vertex,
+                                 node.vertex,
+                                 core::relative(to_pose2(s.anchor), to_pose2(refined.pose)),
+                                 config.loops.sigma_xy,
+                                 radians(config.loops.sigma_degrees),
+                                 true};
+      // The least sharp direction is square to the sharpest, in the submap's grid frame; the
+      // edge takes it in the anchor's.
+      closure.weak_axis =
+          0.5 * std::atan2(2.0 * xy, xx - yy) + 0.5 * std::numbers::pi - to_pose2(s.anchor).theta;
+      closure.weak_weight = std::clamp(least / sharpest, 0.0, 1.0);
+      graph.add_edge(closure);
       ++stats.loop_closures;
       ++pending_closures;
     }

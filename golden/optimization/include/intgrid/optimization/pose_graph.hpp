@@ -10,18 +10,24 @@
 
 namespace intgrid::optimization {
 
-// A measurement of node `to`'s pose in node `from`'s frame. Its residual, whitened by the
-// standard deviations, is
-//   r = [R(theta_from)^T (t_to - t_from) - t_meas] / sigma_xy,
-//       wrap(theta_to - theta_from - theta_meas) / sigma_theta.
+// A measurement of node `to`'s pose in node `from`'s frame. Its residual is
+//   r_t = R(theta_from)^T (t_to - t_from) - t_meas,  r_theta = wrap(theta_to - theta_from -
+//   theta_meas),
+// and its squared whitened norm r_t^T A r_t + r_theta^2 / sigma_theta^2, where the translation's
+// information A = (I - (1 - weak_weight) d d^T) / sigma_xy^2, d = (cos weak_axis, sin weak_axis):
+// sigma_xy in every direction for weak_weight 1 (the default), less information along d for a
+// measurement that fixes that direction less well (a match in a corridor: nothing along it for
+// weak_weight 0). Every 2x2 information matrix is of this form, scaled by its largest eigenvalue.
 struct Edge {
   std::size_t from = 0;
   std::size_t to = 0;
   core::Pose2 measured;      // pose of `to` in `from`'s frame
-  double sigma_xy = 0.0;     // standard deviation of each position component (m), > 0
+  double sigma_xy = 0.0;     // standard deviation of the position across weak_axis (m), > 0
   double sigma_theta = 0.0;  // standard deviation of the heading (rad), > 0
   bool robust = false;       // Huber loss (loop closures)
   bool active = true;        // an inactive edge adds nothing: a loop closure switched off
+  double weak_axis = 0.0;    // the direction d of less information, in `from`'s frame (rad)
+  double weak_weight = 1.0;  // the information along d, a fraction of 1 / sigma_xy^2, in [0, 1]
 };
 
 struct OptimizeOptions {
@@ -43,7 +49,8 @@ class PoseGraph {
   // Throws std::invalid_argument for a pose that is not finite.
   std::size_t add_node(const core::Pose2& initial);
   // Throws std::invalid_argument for an index that is no node, from == to, a sigma that is not
-  // finite and > 0 or a measurement that is not finite.
+  // finite and > 0, a weak_axis that is not finite, a weak_weight outside [0, 1] or a
+  // measurement that is not finite.
   void add_edge(const Edge& edge);
   // A fixed node keeps its pose. Throws std::out_of_range for an index that is no node.
   void set_fixed(std::size_t node, bool fixed = true);

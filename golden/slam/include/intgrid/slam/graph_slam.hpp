@@ -141,11 +141,12 @@ struct GraphSlamStats {
   std::size_t scans = 0;
   std::size_t nodes = 0;
   std::size_t submaps = 0;
-  std::size_t wide_searches = 0;          // scans the narrow window did not match well
-  std::size_t unmatched_scans = 0;        // too few hits or no map yet: odometry only
-  std::size_t loop_searches = 0;          // node-submap pairs searched
-  std::size_t loop_closures = 0;          // of them, matched and added to the graph
-  std::size_t rejected_closures = 0;      // matched, but further off than the drift allows
+  std::size_t wide_searches = 0;    // scans the narrow window did not match well
+  std::size_t unmatched_scans = 0;  // too few hits or no map yet: odometry only
+  std::size_t loop_searches = 0;    // node-submap pairs searched
+  std::size_t loop_closures = 0;    // of them, matched and added to the graph
+  std::size_t rejected_closures =
+      0;  // matched, but further off than the drift allows, or peaking nowhere
   std::size_t switched_off_closures = 0;  // of the loop closures, off after the last optimization
   std::size_t optimizations = 0;
   std::size_t readings = 0;
