@@ -4,8 +4,9 @@
 // Three searches over the same lattice (one cell in x and y, one heading step):
 //   match_exhaustive       every pose of the window (the oracle of the other two);
 //   match_branch_and_bound the same maximum, bounded from above by max-pooled grids: the most a
-//                          block of 2^d x 2^d translations can score is the sum, over the hits,
-//                          of the largest cell each hit can meet in the block (exact, integer);
+//                          block of 2^d x 2^d translations can score is at most the sum, over
+//                          the hits, of the largest cell each hit can meet in the block (exact
+//                          for S_eps cells, rounded up to a whole index for LogOdds);
 //   refine_match           quarter-cell and half-step poses around a lattice match, scored by
 //                          bilinear interpolation of the cells (Q8 weights).
 // Integer arithmetic throughout for std::int8_t cells; the double arithmetic (LogOdds) is the same
@@ -89,6 +90,19 @@ inline void hit_cells(const core::IntegerRays& rays, const ScanPoints& points, s
     const auto [rx, ry] = rays.rotate(theta, points.x_mm[p], points.y_mm[p]);
     cx[p] = static_cast<int>(floor_div(x + rx + c / 2, c));
     cy[p] = static_cast<int>(floor_div(y + ry + c / 2, c));
+  }
+}
+
+// The hits turned to the heading theta (mm, robot frame axes).
+inline void turned_hits(const core::IntegerRays& rays, const ScanPoints& points, std::int64_t theta,
+                        std::vector<int>& qx, std::vector<int>& qy) {
+  qx.resize(points.size());
+  qy.resize(points.size());
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const auto [rx, ry] =
+        rays.rotate(static_cast<std::int32_t>(theta), points.x_mm[p], points.y_mm[p]);
+    qx[p] = static_cast<int>(rx);
+    qy[p] = static_cast<int>(ry);
   }
 }
 
@@ -386,15 +400,10 @@ Match<Cell> refine_match(const LocalGrid<Cell>& grid, const core::IntegerRays& r
   const std::int64_t c = rays.cell_mm();
   Match<Cell> best = lattice;
   bool any = false;
-  std::vector<int> qx(points.size()), qy(points.size());
+  std::vector<int> qx, qy;
   for (int m = -2; m <= 2; ++m) {
     const std::int64_t theta = lattice.pose.theta + m * window.step_units / 2;
-    for (std::size_t p = 0; p < points.size(); ++p) {
-      const auto [rx, ry] =
-          rays.rotate(static_cast<std::int32_t>(theta), points.x_mm[p], points.y_mm[p]);
-      qx[p] = static_cast<int>(rx);
-      qy[p] = static_cast<int>(ry);
-    }
+    matching_detail::turned_hits(rays, points, theta, qx, qy);
     for (int v = -4; v <= 4; ++v)
       for (int u = -4; u <= 4; ++u) {
         const std::int64_t x = lattice.pose.x_mm + u * c / 4, y = lattice.pose.y_mm + v * c / 4;
@@ -426,13 +435,8 @@ EvidenceCurvature<Cell> evidence_curvature(const LocalGrid<Cell>& grid,
                                            const core::IntegerRays& rays, const ScanPoints& points,
                                            const SlamPose& pose) {
   using S = MatchScore<Cell>;
-  std::vector<int> qx(points.size()), qy(points.size());
-  for (std::size_t p = 0; p < points.size(); ++p) {
-    const auto [rx, ry] =
-        rays.rotate(static_cast<std::int32_t>(pose.theta), points.x_mm[p], points.y_mm[p]);
-    qx[p] = static_cast<int>(rx);
-    qy[p] = static_cast<int>(ry);
-  }
+  std::vector<int> qx, qy;
+  matching_detail::turned_hits(rays, points, pose.theta, qx, qy);
   const std::int64_t c = rays.cell_mm();
   const auto at = [&](int i, int j) {
     return matching_detail::interpolated_evidence(grid, qx, qy, pose.x_mm + i * c,
