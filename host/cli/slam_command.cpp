@@ -38,7 +38,7 @@ void check_slam_options(const slam::SlamConfig& c) {
   naming_flags(slam_flags(), [&] { slam::check_slam_config(c); });
 }
 
-const FieldFlags& graph_slam_flags() {
+const FieldFlags& submap_slam_flags() {
   static const FieldFlags flags = {
       {"cell", "--cell"},
       {"headings", "--headings"},
@@ -81,8 +81,8 @@ const FieldFlags& graph_slam_flags() {
   return flags;
 }
 
-void check_graph_slam_options(const slam::GraphSlamConfig& c) {
-  naming_flags(graph_slam_flags(), [&] { slam::check_graph_slam_config(c); });
+void check_submap_slam_options(const slam::SubmapSlamConfig& c) {
+  naming_flags(submap_slam_flags(), [&] { slam::check_submap_slam_config(c); });
 }
 
 void add_slam_options(CLI::App& cmd, slam::SlamConfig& c) {
@@ -164,7 +164,7 @@ struct SharedSetting {
 };
 
 std::vector<SharedSetting> shared_settings() {
-  const slam::GraphSlamConfig s;
+  const slam::SubmapSlamConfig s;
   return {
       {"--cell", "map cell (m, whole millimetres; the grid engine's pose-grid step too)",
        option_number(s.cell), [](SlamJobOptions& o) { o.submap_config.cell = o.grid_config.cell; }},
@@ -185,7 +185,7 @@ const char* const kBothGroup = "Both engines (each with its own default)";
 const char* const kGridGroup = "The grid engine (--engine grid)";
 
 // The submaps engine's own options, grouped by concern; returns them.
-std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::GraphSlamConfig& c) {
+std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::SubmapSlamConfig& c) {
   std::vector<CLI::Option*> added;
   std::string group;
   const auto add = [&](const std::string& name, auto& field, const std::string& help,

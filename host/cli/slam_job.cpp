@@ -119,9 +119,9 @@ std::size_t peak_memory_bytes() {
   return static_cast<std::size_t>(usage.ru_maxrss) * 1024;
 }
 
-// The submaps engine's settings, nested as GraphSlamConfig is (the fields' paths of
-// check_graph_slam_config), and the map's eps.
-nlohmann::json submap_settings_json(const slam::GraphSlamConfig& c, const core::SepsCodec& codec) {
+// The submaps engine's settings, nested as SubmapSlamConfig is (the fields' paths of
+// check_submap_slam_config), and the map's eps.
+nlohmann::json submap_settings_json(const slam::SubmapSlamConfig& c, const core::SepsCodec& codec) {
   const auto& t = c.tracking;
   const auto& l = c.loops;
   const auto& g = c.graph;
@@ -187,7 +187,7 @@ std::string slam_summary(const SlamJobResult& r) {
   if (r.ate)
     line = io::printed("ATE %.3f m (raw odometry %.2f m), ", r.ate->rmse, r.odometry_ate->rmse);
   if (r.submap_stats) {
-    const slam::GraphSlamStats& s = *r.submap_stats;
+    const slam::SubmapSlamStats& s = *r.submap_stats;
     const auto count = [](std::size_t n, const char* one, const char* many) {
       return io::printed("%zu %s", n, n == 1 ? one : many);
     };
@@ -244,7 +244,7 @@ void require_memory_for(const core::Log& log, const SlamJobOptions& o) {
     extent = "the square around the first pose that holds its odometry (reaching " + metres(reach) +
              " m) and the range";
   } else {
-    const slam::GraphSlamConfig& c = o.submap_config;
+    const slam::SubmapSlamConfig& c = o.submap_config;
     const core::Pose2 first = log.scans.front().robot;
     double x_lo = 0.0, x_hi = 0.0, y_lo = 0.0, y_hi = 0.0;
     for (const core::Scan& s : log.scans) {
@@ -271,7 +271,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
   if (o.engine == SlamEngine::grid)
     check_slam_options(o.grid_config);
   else
-    check_graph_slam_options(o.submap_config);
+    check_submap_slam_options(o.submap_config);
   LogInput input = read_log_input(o.log);
   const core::Log& log = input.log;
   std::optional<core::Log> reference;
@@ -316,8 +316,8 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     if (o.engine == SlamEngine::grid) {
       r.run = slam::run_slam(log, o.grid_config, o.arithmetic, report);
     } else {
-      slam::GraphSlamStats stats;
-      r.run = slam::run_graph_slam(log, o.submap_config, o.arithmetic, &stats, report);
+      slam::SubmapSlamStats stats;
+      r.run = slam::run_submap_slam(log, o.submap_config, o.arithmetic, &stats, report);
       r.submap_stats = stats;
     }
   }
@@ -349,7 +349,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                {"log_seconds", r.log_seconds},
                {"real_time_factor", r.seconds > 0.0 ? r.log_seconds / r.seconds : 0.0}};
   if (r.submap_stats) {
-    const slam::GraphSlamStats& s = *r.submap_stats;
+    const slam::SubmapSlamStats& s = *r.submap_stats;
     r.metrics.update({{"nodes", s.nodes},
                       {"submaps", s.submaps},
                       {"wide_searches", s.wide_searches},

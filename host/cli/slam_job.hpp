@@ -1,5 +1,5 @@
 // The `slam` job: a log through one of two SLAM engines, the submap SLAM with loop closure
-// (slam::run_graph_slam, the default) or the thesis's event-driven grid SLAM (slam::run_slam),
+// (slam::run_submap_slam, the default) or the thesis's event-driven grid SLAM (slam::run_slam),
 // written as a trajectory, a ROS map, a PNG with the trajectory drawn and the run's metrics;
 // scored against a reference log (ATE) and against the Freiburg benchmark's relations.
 #pragma once
@@ -12,9 +12,9 @@
 
 #include "cli/memory_budget.hpp"
 #include "cli/options.hpp"
-#include "intgrid/slam/graph_slam.hpp"
 #include "intgrid/slam/log_run.hpp"
 #include "intgrid/slam/relations.hpp"
+#include "intgrid/slam/submap_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 
 namespace intgrid::cli {
@@ -33,8 +33,8 @@ struct SlamJobOptions {
   std::optional<std::filesystem::path> tum;        // also write the trajectory here, TUM format
   core::Arithmetic arithmetic = core::Arithmetic::integer;
   SlamEngine engine = SlamEngine::submaps;
-  slam::GraphSlamConfig submap_config;  // the settings of --engine submaps
-  slam::SlamConfig grid_config;         // the settings of --engine grid
+  slam::SubmapSlamConfig submap_config;  // the settings of --engine submaps
+  slam::SlamConfig grid_config;          // the settings of --engine grid
   bool progress = true;
   double max_memory_bytes = default_memory_limit_bytes();  // --max-memory
 };
@@ -42,9 +42,9 @@ struct SlamJobOptions {
 struct SlamJobResult {
   SlamEngine engine = SlamEngine::submaps;
   slam::SlamRun run;
-  std::optional<slam::GraphSlamStats> submap_stats;  // the submaps engine's counts
-  double seconds = 0.0;                              // the SLAM alone, without reading or writing
-  double log_seconds = 0.0;                          // time the log spans
+  std::optional<slam::SubmapSlamStats> submap_stats;  // the submaps engine's counts
+  double seconds = 0.0;                               // the SLAM alone, without reading or writing
+  double log_seconds = 0.0;                           // time the log spans
   std::optional<slam::TrajectoryError> ate;
   std::optional<slam::TrajectoryError> odometry_ate;  // the raw odometry against the same reference
   std::optional<slam::RelationError> relations;       // the SLAM trajectory against the relations
@@ -59,10 +59,10 @@ struct SlamJobResult {
 // InputError naming its first relation's line and t1, found before SLAM runs.
 SlamJobResult run_slam_job(const SlamJobOptions& options);
 
-// GraphSlamConfig's fields as check_graph_slam_config names them -> the flags of `slam`.
-const FieldFlags& graph_slam_flags();
-// Throws OptionError naming the flag for a submaps setting check_graph_slam_config refuses.
-void check_graph_slam_options(const slam::GraphSlamConfig& config);
+// SubmapSlamConfig's fields as check_submap_slam_config names them -> the flags of `slam`.
+const FieldFlags& submap_slam_flags();
+// Throws OptionError naming the flag for a submaps setting check_submap_slam_config refuses.
+void check_submap_slam_options(const slam::SubmapSlamConfig& config);
 
 // The run in one line for people, without the output's path: for the submaps engine "ATE A m
 // (raw odometry B m), N nodes in S submaps, C loop closures of L searched, T s for D s of data

@@ -707,7 +707,7 @@ TEST_F(Cli, SlamSharedOptionsSetTheEngineThatRuns) {
   EXPECT_NE(metrics.find("\"res\": 0.08"), std::string::npos) << metrics;
 }
 
-// A setting of the other engine, a bad submaps value, a value check_graph_slam_config refuses:
+// A setting of the other engine, a bad submaps value, a value check_submap_slam_config refuses:
 // exit 2, one line naming the flag (and, for another engine's setting, that engine), no output.
 TEST_F(Cli, SlamRefusesTheOtherEnginesOptionsAndBadSubmapValues) {
   const std::string slam =

@@ -11,8 +11,8 @@
 
 #include "intgrid/io/log_io.hpp"
 #include "intgrid/io/relations_io.hpp"
-#include "intgrid/slam/graph_slam.hpp"
 #include "intgrid/slam/relations.hpp"
+#include "intgrid/slam/submap_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 #include "test_support.hpp"
 
@@ -20,7 +20,7 @@ namespace intgrid::slam::test {
 
 struct Segment {
   RelationError slam_int, slam_double, odometry;
-  GraphSlamStats stats_int, stats_double;
+  SubmapSlamStats stats_int, stats_double;
   double map_cells_int = 0.0, map_cells_double = 0.0;  // of the map each run returned
 };
 
@@ -36,11 +36,11 @@ inline Segment run_segment(const std::string& name, std::size_t first, std::size
   Segment s;
   s.odometry = score_relations(scan_poses(log), relations);
   const SlamRun integer =
-      run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::integer, &s.stats_int);
+      run_submap_slam(log, SubmapSlamConfig{}, core::Arithmetic::integer, &s.stats_int);
   s.slam_int = score_relations(integer.trajectory, relations);
   s.map_cells_int = static_cast<double>(integer.map.cells.size());
   const SlamRun floating =
-      run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::floating, &s.stats_double);
+      run_submap_slam(log, SubmapSlamConfig{}, core::Arithmetic::floating, &s.stats_double);
   s.slam_double = score_relations(floating.trajectory, relations);
   s.map_cells_double = static_cast<double>(floating.map.cells.size());
   // The figures docs/results.md quotes for the segments.

@@ -1,4 +1,4 @@
-// The front end of GraphSlam, its per-scan path: a pose in the local frame that follows the
+// The front end of SubmapSlam, its per-scan path: a pose in the local frame that follows the
 // odometry and is matched against the older of two active submaps, and scans fused into both.
 // Integers only (mm, angle units, index sums); included by submap_tracking_integer.cpp, built
 // without floating-point registers, and submap_tracking_double.cpp.
@@ -16,7 +16,7 @@
 
 namespace intgrid::slam {
 
-// GraphSlamConfig in the per-scan path's units, made by the back end.
+// SubmapSlamConfig in the per-scan path's units, made by the back end.
 struct TrackerSetup {
   std::int32_t cell_mm = 50;
   std::int32_t max_range_mm = 30000;

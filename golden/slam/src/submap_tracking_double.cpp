@@ -1,4 +1,4 @@
-// GraphSlam's per-scan path in the double arithmetic: the same code on LogOdds submaps.
+// SubmapSlam's per-scan path in the double arithmetic: the same code on LogOdds submaps.
 #include "submap_tracking.hpp"
 
 namespace intgrid::slam {

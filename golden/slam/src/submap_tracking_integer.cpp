@@ -1,4 +1,4 @@
-// GraphSlam's per-scan path in the integer arithmetic (S_eps submaps, index sums). Built without
+// SubmapSlam's per-scan path in the integer arithmetic (S_eps submaps, index sums). Built without
 // floating-point registers, as the event-driven SLAM's is; no_floating_point_in_integer_slam
 // disassembles it.
 #include "submap_tracking.hpp"

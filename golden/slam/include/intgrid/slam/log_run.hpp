@@ -46,7 +46,7 @@ void check_slam_log(const core::Log& log);
 
 // Throws std::invalid_argument naming the first scan whose geometry (beam count, bearings, range
 // limit or sensor mount) differs from the first scan's: the grid engine (run_slam, ScanSlam)
-// sets its pose grid up for one geometry. GraphSlam takes each scan's own.
+// sets its pose grid up for one geometry. SubmapSlam takes each scan's own.
 void check_one_sensor_geometry(const core::Log& log);
 
 // The farthest any scan's robot pose lies from the first scan's (m), 0 without scans: the reach

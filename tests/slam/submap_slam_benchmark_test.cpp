@@ -2,7 +2,7 @@
 // (benchmark_segment.hpp). The whole logs are scripts/benchmark_slam.sh's (docs/results.md). The
 // floors sit below what the defaults reach (docs/results.md quotes both), as the defaults were
 // chosen on these logs. Label long: the Release pass runs these; under the sanitizers the short
-// segments of graph_slam_data_test.cpp run the same code.
+// segments of submap_slam_data_test.cpp run the same code.
 #include <gtest/gtest.h>
 
 #include "benchmark_segment.hpp"
@@ -16,7 +16,7 @@ using test::Segment;
 
 // Intel's odometry slips by degrees: 0.21 m and 3.9 degrees on this segment; the SLAM 0.022 m
 // and 0.26 degree (integer), 0.030 m and 0.26 degree (double).
-TEST(GraphSlamBenchmark, IntelSegmentBeatsTheOdometryFarInBothArithmetics) {
+TEST(SubmapSlamBenchmark, IntelSegmentBeatsTheOdometryFarInBothArithmetics) {
   if (!present("intel"))
     GTEST_SKIP() << intgrid::test::absent(intgrid::test::benchmark_dir() / "intel.clf");
   const Segment s = run_segment("intel", 0, 2000);
@@ -36,7 +36,7 @@ TEST(GraphSlamBenchmark, IntelSegmentBeatsTheOdometryFarInBothArithmetics) {
 
 // ACES's odometry is good locally (0.030 m, 0.74 degree on this segment): the SLAM's translation
 // is no better there (0.053 m integer, 0.056 m double), its rotation is (0.36 degree).
-TEST(GraphSlamBenchmark, AcesSegmentKeepsTheOdometrysTranslationAndImprovesItsRotation) {
+TEST(SubmapSlamBenchmark, AcesSegmentKeepsTheOdometrysTranslationAndImprovesItsRotation) {
   if (!present("aces"))
     GTEST_SKIP() << intgrid::test::absent(intgrid::test::benchmark_dir() / "aces.clf");
   const Segment s = run_segment("aces", 0, 2000);

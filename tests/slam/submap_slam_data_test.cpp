@@ -2,7 +2,7 @@
 // (benchmark_segment.hpp): short enough to run under the sanitizers (a few seconds in Release),
 // long enough to reach every part of the SLAM: several submaps grown as the robot explores, loop
 // closures by branch and bound, and graph optimizations. The 2000-scan segments are
-// graph_slam_benchmark_test.cpp's (label long).
+// submap_slam_benchmark_test.cpp's (label long).
 //
 // Intel's segment is scans 1100 to 1499, not the first 400: from the log's 1357th scan on, a
 // submap that grew by the range instead of the ISM's whole reach wrote out of bounds (17e8725;
@@ -30,7 +30,7 @@ constexpr std::size_t kIntelSegmentFirstScan = 1100;
 // is better than the odometry's.
 void expect_every_stage_ran_and_rotation_improved(const Segment& s) {
   ASSERT_GT(s.odometry.matched, 20u);
-  for (const GraphSlamStats& stats : {s.stats_int, s.stats_double}) {
+  for (const SubmapSlamStats& stats : {s.stats_int, s.stats_double}) {
     EXPECT_EQ(stats.scans, kShortSegmentScans);
     EXPECT_GE(stats.submaps, 3u);
     EXPECT_GT(stats.loop_closures, 0u);
@@ -39,9 +39,10 @@ void expect_every_stage_ran_and_rotation_improved(const Segment& s) {
   // The memory estimate's figure for the loop search's pyramid cache (submaps taken as large as
   // the map) bounds what the cache held.
   EXPECT_LE(static_cast<double>(s.stats_int.peak_pyramid_bytes),
-            pyramid_cache_bytes(GraphSlamConfig{}, core::Arithmetic::integer, s.map_cells_int));
-  EXPECT_LE(static_cast<double>(s.stats_double.peak_pyramid_bytes),
-            pyramid_cache_bytes(GraphSlamConfig{}, core::Arithmetic::floating, s.map_cells_double));
+            pyramid_cache_bytes(SubmapSlamConfig{}, core::Arithmetic::integer, s.map_cells_int));
+  EXPECT_LE(
+      static_cast<double>(s.stats_double.peak_pyramid_bytes),
+      pyramid_cache_bytes(SubmapSlamConfig{}, core::Arithmetic::floating, s.map_cells_double));
   EXPECT_GT(s.stats_int.peak_pyramid_bytes, 0u);
   for (const RelationError& e : {s.slam_int, s.slam_double}) {
     EXPECT_EQ(e.matched, s.odometry.matched);
@@ -50,14 +51,14 @@ void expect_every_stage_ran_and_rotation_improved(const Segment& s) {
   }
 }
 
-TEST(GraphSlamData, IntelShortSegmentRunsEveryStageAndImprovesTheRotation) {
+TEST(SubmapSlamData, IntelShortSegmentRunsEveryStageAndImprovesTheRotation) {
   if (!present("intel"))
     GTEST_SKIP() << intgrid::test::absent(intgrid::test::benchmark_dir() / "intel.clf");
   expect_every_stage_ran_and_rotation_improved(
       run_segment("intel", kIntelSegmentFirstScan, kShortSegmentScans));
 }
 
-TEST(GraphSlamData, AcesShortSegmentRunsEveryStageAndImprovesTheRotation) {
+TEST(SubmapSlamData, AcesShortSegmentRunsEveryStageAndImprovesTheRotation) {
   if (!present("aces"))
     GTEST_SKIP() << intgrid::test::absent(intgrid::test::benchmark_dir() / "aces.clf");
   expect_every_stage_ran_and_rotation_improved(run_segment("aces", 0, kShortSegmentScans));
@@ -68,7 +69,7 @@ TEST(GraphSlamData, AcesShortSegmentRunsEveryStageAndImprovesTheRotation) {
 // threshold are weighed against (E and the submaps' own scores, docs/algorithms.md section 10).
 // With both against the full score instead, the 181-beam run closed no loop and ended 0.95 m
 // off (0.17 m at 361).
-TEST(GraphSlamData, TelecomAtHalfTheBeamsKeepsItsAccuracy) {
+TEST(SubmapSlamData, TelecomAtHalfTheBeamsKeepsItsAccuracy) {
   const std::filesystem::path data = intgrid::test::data_dir();
   const core::Log log = io::read_log(data / "malaga_telecom_loop.log");
   const std::vector<TimedPose> reference =
@@ -80,15 +81,16 @@ TEST(GraphSlamData, TelecomAtHalfTheBeamsKeepsItsAccuracy) {
     s.ranges = std::move(every_other);
     s.dangle *= 2;
   }
-  GraphSlamStats full_stats, half_stats;
+  SubmapSlamStats full_stats, half_stats;
   const double full =
       absolute_trajectory_error(
-          run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::integer, &full_stats).trajectory,
+          run_submap_slam(log, SubmapSlamConfig{}, core::Arithmetic::integer, &full_stats)
+              .trajectory,
           reference)
           .rmse;
   const double halved =
       absolute_trajectory_error(
-          run_graph_slam(half, GraphSlamConfig{}, core::Arithmetic::integer, &half_stats)
+          run_submap_slam(half, SubmapSlamConfig{}, core::Arithmetic::integer, &half_stats)
               .trajectory,
           reference)
           .rmse;

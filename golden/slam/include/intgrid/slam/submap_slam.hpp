@@ -28,7 +28,7 @@ namespace intgrid::slam {
 
 // The options, nested by concern. Chosen on the Intel and ACES benchmark logs only
 // (docs/results.md); the sensor's beam layout and range come from the log.
-struct GraphSlamConfig {
+struct SubmapSlamConfig {
   double cell = 0.05;   // submap cell (m), a whole number of millimetres
   int headings = 1024;  // heading steps per turn of the match lattice: a power of two, 64..16384
 
@@ -122,7 +122,7 @@ struct GraphSlamConfig {
 };
 
 // Throws std::invalid_argument naming the offending field by its path (`loops.window`).
-void check_graph_slam_config(const GraphSlamConfig& config);
+void check_submap_slam_config(const SubmapSlamConfig& config);
 
 // The loop-closure search keeps the max-pooled copies of the submaps it searched last
 // (MaxPyramid: the grid and pyramid_levels(loop window) levels of a byte a cell above it; an
@@ -135,10 +135,10 @@ inline constexpr std::size_t kPyramidCacheBytes = std::size_t{192} << 20;
 // The most bytes that cache can hold for submaps of submap_cells cells each (an upper figure
 // for a memory estimate: the levels' padding is left out, each level counted at the submap's
 // cells).
-double pyramid_cache_bytes(const GraphSlamConfig& config, core::Arithmetic arithmetic,
+double pyramid_cache_bytes(const SubmapSlamConfig& config, core::Arithmetic arithmetic,
                            double submap_cells);
 
-struct GraphSlamStats {
+struct SubmapSlamStats {
   std::size_t scans = 0;
   std::size_t nodes = 0;
   std::size_t submaps = 0;
@@ -155,14 +155,14 @@ struct GraphSlamStats {
   std::size_t peak_pyramid_bytes = 0;
 };
 
-class GraphSlam {
+class SubmapSlam {
  public:
   // A run whose SLAM frame is first.robot. Throws std::invalid_argument for a bad configuration
   // or a first scan of no use (see insert).
-  GraphSlam(const GraphSlamConfig& config, core::Arithmetic arithmetic, const core::Scan& first);
-  ~GraphSlam();
-  GraphSlam(GraphSlam&&) noexcept;
-  GraphSlam& operator=(GraphSlam&&) noexcept;
+  SubmapSlam(const SubmapSlamConfig& config, core::Arithmetic arithmetic, const core::Scan& first);
+  ~SubmapSlam();
+  SubmapSlam(SubmapSlam&&) noexcept;
+  SubmapSlam& operator=(SubmapSlam&&) noexcept;
 
   // The next scan, `first` included. Each scan's own geometry (beam count, bearings, mount) is
   // used for it, through matching, insertion, loop closure and the final map: an interlaced laser
@@ -181,7 +181,7 @@ class GraphSlam {
   core::Grid<std::int8_t> map() const;
   const core::SepsCodec& codec() const;
   core::Pose2 frame() const { return frame_; }
-  GraphSlamStats stats() const;
+  SubmapSlamStats stats() const;
 
  private:
   struct Engine;
@@ -199,9 +199,9 @@ class GraphSlam {
   std::vector<double> times_;  // every scan's
 };
 
-// Runs the whole log through GraphSlam, then finish(). progress(done, total) after each scan.
-SlamRun run_graph_slam(const core::Log& log, const GraphSlamConfig& config,
-                       core::Arithmetic arithmetic, GraphSlamStats* stats = nullptr,
-                       const core::Progress& progress = {});
+// Runs the whole log through SubmapSlam, then finish(). progress(done, total) after each scan.
+SlamRun run_submap_slam(const core::Log& log, const SubmapSlamConfig& config,
+                        core::Arithmetic arithmetic, SubmapSlamStats* stats = nullptr,
+                        const core::Progress& progress = {});
 
 }  // namespace intgrid::slam

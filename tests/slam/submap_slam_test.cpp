@@ -13,9 +13,9 @@
 
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/simulation/simulator.hpp"
-#include "intgrid/slam/graph_slam.hpp"
 #include "intgrid/slam/local_grid.hpp"
 #include "intgrid/slam/scan_matching.hpp"
+#include "intgrid/slam/submap_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 
 namespace intgrid::slam {
@@ -310,8 +310,8 @@ const SimulatedRun& loop_run() {
 
 void tracks_the_loop(core::Arithmetic arithmetic) {
   const SimulatedRun& sim = loop_run();
-  GraphSlamStats stats;
-  const SlamRun run = run_graph_slam(sim.log, GraphSlamConfig{}, arithmetic, &stats);
+  SubmapSlamStats stats;
+  const SlamRun run = run_submap_slam(sim.log, SubmapSlamConfig{}, arithmetic, &stats);
   ASSERT_EQ(run.trajectory.size(), sim.log.scans.size());
   const TrajectoryError slam = absolute_trajectory_error(run.trajectory, sim.truth);
   const TrajectoryError odometry = absolute_trajectory_error(scan_poses(sim.log), sim.truth);
@@ -326,10 +326,10 @@ void tracks_the_loop(core::Arithmetic arithmetic) {
   EXPECT_EQ(stats.scans, sim.log.scans.size());
 }
 
-TEST(GraphSlam, TracksASimulatedLoopFarBetterThanOdometryInInteger) {
+TEST(SubmapSlam, TracksASimulatedLoopFarBetterThanOdometryInInteger) {
   tracks_the_loop(core::Arithmetic::integer);
 }
-TEST(GraphSlam, TracksASimulatedLoopFarBetterThanOdometryInDouble) {
+TEST(SubmapSlam, TracksASimulatedLoopFarBetterThanOdometryInDouble) {
   tracks_the_loop(core::Arithmetic::floating);
 }
 
@@ -343,7 +343,7 @@ TEST(GraphSlam, TracksASimulatedLoopFarBetterThanOdometryInDouble) {
 void holds_a_spinning_start(core::Arithmetic arithmetic) {
   static const SimulatedRun sim = simulated_loop(2, 1.1);
   const std::size_t spin = sim.truth.size() - 700;
-  const SlamRun run = run_graph_slam(sim.log, GraphSlamConfig{}, arithmetic);
+  const SlamRun run = run_submap_slam(sim.log, SubmapSlamConfig{}, arithmetic);
   double worst_heading = 0.0;  // during the spin, against the truth: both start at the same pose
   for (std::size_t i = 0; i < spin; ++i)
     worst_heading =
@@ -360,10 +360,10 @@ void holds_a_spinning_start(core::Arithmetic arithmetic) {
   EXPECT_LT(slam.rmse, 0.15);
 }
 
-TEST(GraphSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInInteger) {
+TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInInteger) {
   holds_a_spinning_start(core::Arithmetic::integer);
 }
-TEST(GraphSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
+TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
   holds_a_spinning_start(core::Arithmetic::floating);
 }
 
@@ -376,7 +376,7 @@ TEST(GraphSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
 // before anything along the corridor could be seen, would carry that error into the rest; a
 // loop closure in the corridor fixes nothing along it, and taken at full weight in every
 // direction it pinned the nodes where noise put them (the closures' information follows the
-// match's evidence curvature, graph_slam.cpp).
+// match's evidence curvature, submap_slam.cpp).
 SimulatedRun featureless_corridor_start() {
   core::ProbabilityGrid world(core::GridGeometry{900, 200, 0.05, 0.0, 0.0}, 1.0);
   const auto carve = [&](double x0, double y0, double x1, double y1, double value) {
@@ -399,8 +399,8 @@ SimulatedRun featureless_corridor_start() {
 
 void holds_a_featureless_corridor_start(core::Arithmetic arithmetic) {
   static const SimulatedRun sim = featureless_corridor_start();
-  GraphSlamStats stats;
-  const SlamRun run = run_graph_slam(sim.log, GraphSlamConfig{}, arithmetic, &stats);
+  SubmapSlamStats stats;
+  const SlamRun run = run_submap_slam(sim.log, SubmapSlamConfig{}, arithmetic, &stats);
   // Along the corridor (x) and across it (y) while only the side walls are in sight: both start
   // at the same pose.
   const std::vector<core::Pose2> odometry_poses = [&] {
@@ -433,10 +433,10 @@ void holds_a_featureless_corridor_start(core::Arithmetic arithmetic) {
   EXPECT_LT(slam.max, 0.35);
 }
 
-TEST(GraphSlam, HoldsAStartInAFeaturelessCorridorInInteger) {
+TEST(SubmapSlam, HoldsAStartInAFeaturelessCorridorInInteger) {
   holds_a_featureless_corridor_start(core::Arithmetic::integer);
 }
-TEST(GraphSlam, HoldsAStartInAFeaturelessCorridorInDouble) {
+TEST(SubmapSlam, HoldsAStartInAFeaturelessCorridorInDouble) {
   holds_a_featureless_corridor_start(core::Arithmetic::floating);
 }
 
@@ -465,8 +465,8 @@ void tracks_an_interlaced_loop(core::Arithmetic arithmetic) {
   }
   ASSERT_EQ(log.scans[0].ranges.size(), 181u);
   ASSERT_EQ(log.scans[1].ranges.size(), 180u);
-  GraphSlamStats stats;
-  const SlamRun run = run_graph_slam(log, GraphSlamConfig{}, arithmetic, &stats);
+  SubmapSlamStats stats;
+  const SlamRun run = run_submap_slam(log, SubmapSlamConfig{}, arithmetic, &stats);
   const TrajectoryError slam = absolute_trajectory_error(run.trajectory, sim.truth);
   const TrajectoryError odometry = absolute_trajectory_error(scan_poses(log), sim.truth);
   std::printf("interlaced loop: ATE %.3f m, odometry %.3f m\n", slam.rmse, odometry.rmse);
@@ -476,18 +476,18 @@ void tracks_an_interlaced_loop(core::Arithmetic arithmetic) {
   EXPECT_GT(stats.loop_closures, 0u);
 }
 
-TEST(GraphSlam, TakesEachScansOwnGeometryInInteger) {
+TEST(SubmapSlam, TakesEachScansOwnGeometryInInteger) {
   tracks_an_interlaced_loop(core::Arithmetic::integer);
 }
-TEST(GraphSlam, TakesEachScansOwnGeometryInDouble) {
+TEST(SubmapSlam, TakesEachScansOwnGeometryInDouble) {
   tracks_an_interlaced_loop(core::Arithmetic::floating);
 }
 
-TEST(GraphSlam, RunsAreBitIdentical) {
+TEST(SubmapSlam, RunsAreBitIdentical) {
   core::Log log = loop_run().log;
   log.scans.resize(150);
-  const SlamRun a = run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::integer);
-  const SlamRun b = run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::integer);
+  const SlamRun a = run_submap_slam(log, SubmapSlamConfig{}, core::Arithmetic::integer);
+  const SlamRun b = run_submap_slam(log, SubmapSlamConfig{}, core::Arithmetic::integer);
   ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
   for (std::size_t i = 0; i < a.trajectory.size(); ++i)
     EXPECT_EQ(a.trajectory[i].pose, b.trajectory[i].pose) << i;
@@ -495,7 +495,7 @@ TEST(GraphSlam, RunsAreBitIdentical) {
 }
 
 // The online API needs no map size: a robot that drives 200 m straight down a long corridor.
-TEST(GraphSlam, MapGrowsAsTheRobotDrivesAway) {
+TEST(SubmapSlam, MapGrowsAsTheRobotDrivesAway) {
   core::Log log;
   for (int i = 0; i < 400; ++i) {
     core::Scan s;
@@ -512,27 +512,27 @@ TEST(GraphSlam, MapGrowsAsTheRobotDrivesAway) {
     }
     log.scans.push_back(std::move(s));
   }
-  GraphSlamStats stats;
-  const SlamRun run = run_graph_slam(log, GraphSlamConfig{}, core::Arithmetic::integer, &stats);
+  SubmapSlamStats stats;
+  const SlamRun run = run_submap_slam(log, SubmapSlamConfig{}, core::Arithmetic::integer, &stats);
   EXPECT_GT(run.map.geometry.width * run.map.geometry.resolution, 200.0);
   EXPECT_GT(stats.submaps, 3u);
 }
 
-TEST(GraphSlam, ConfigCheckNamesTheField) {
-  GraphSlamConfig c;
+TEST(SubmapSlam, ConfigCheckNamesTheField) {
+  SubmapSlamConfig c;
   c.loops.window = -1;
   try {
-    check_graph_slam_config(c);
+    check_submap_slam_config(c);
     FAIL() << "accepted a negative window";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("loops.window"), std::string::npos) << e.what();
   }
   c = {};
   c.cell = 0.0125;
-  EXPECT_THROW(check_graph_slam_config(c), std::invalid_argument);  // not whole millimetres
+  EXPECT_THROW(check_submap_slam_config(c), std::invalid_argument);  // not whole millimetres
   c = {};
   c.headings = 1000;
-  EXPECT_THROW(check_graph_slam_config(c), std::invalid_argument);
+  EXPECT_THROW(check_submap_slam_config(c), std::invalid_argument);
 }
 
 // Two look-alike corridors: A (y 1 to 3 m) and B (y 5 to 7 m), 30 m long, the same niches at the
@@ -571,8 +571,8 @@ SimulatedRun look_alike_corridors(std::size_t scans) {
 // laid onto A.
 void rejects_the_look_alike_corridor(core::Arithmetic arithmetic) {
   static const SimulatedRun sim = look_alike_corridors(900);
-  GraphSlamStats stats;
-  const SlamRun run = run_graph_slam(sim.log, GraphSlamConfig{}, arithmetic, &stats);
+  SubmapSlamStats stats;
+  const SlamRun run = run_submap_slam(sim.log, SubmapSlamConfig{}, arithmetic, &stats);
   const TrajectoryError slam = absolute_trajectory_error(run.trajectory, sim.truth);
   const TrajectoryError odometry = absolute_trajectory_error(scan_poses(sim.log), sim.truth);
   std::printf(
@@ -587,10 +587,10 @@ void rejects_the_look_alike_corridor(core::Arithmetic arithmetic) {
   EXPECT_LT(slam.max, 0.5);
 }
 
-TEST(GraphSlam, RejectsALookAlikeCorridorAndKeepsTheTrueClosuresInInteger) {
+TEST(SubmapSlam, RejectsALookAlikeCorridorAndKeepsTheTrueClosuresInInteger) {
   rejects_the_look_alike_corridor(core::Arithmetic::integer);
 }
-TEST(GraphSlam, RejectsALookAlikeCorridorAndKeepsTheTrueClosuresInDouble) {
+TEST(SubmapSlam, RejectsALookAlikeCorridorAndKeepsTheTrueClosuresInDouble) {
   rejects_the_look_alike_corridor(core::Arithmetic::floating);
 }
 

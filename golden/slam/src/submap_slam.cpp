@@ -1,7 +1,7 @@
-// GraphSlam's back end: the set-up of the per-scan path, the pose graph of submaps and nodes, loop
+// SubmapSlam's back end: the set-up of the per-scan path, the pose graph of submaps and nodes, loop
 // closure and the final map. Floating point here only converts poses between the per-scan path's
 // integers and the graph's doubles, and runs the graph's optimizer.
-#include "intgrid/slam/graph_slam.hpp"
+#include "intgrid/slam/submap_slam.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -60,20 +60,20 @@ SearchWindow search_window(double window_m, double degrees, double prior_m, doub
   return w;
 }
 
-core::SepsCodec make_codec(const GraphSlamConfig& c) {
+core::SepsCodec make_codec(const SubmapSlamConfig& c) {
   return core::SepsCodec::for_levels(c.map.seps_bits, core::narrow_pmax(c.cell, c.sensor.sigma),
                                      c.map.seps_levels);
 }
 
-std::int32_t ism_step_mm(const GraphSlamConfig& c) {
+std::int32_t ism_step_mm(const SubmapSlamConfig& c) {
   return std::max<std::int32_t>(1, static_cast<std::int32_t>(millimetres(c.cell)) / 8);
 }
 
 template <class Cell>
-core::IsmTable<Cell> make_table(const GraphSlamConfig& c, const core::SepsCodec& codec);
+core::IsmTable<Cell> make_table(const SubmapSlamConfig& c, const core::SepsCodec& codec);
 
 template <>
-core::IsmTable<std::int8_t> make_table(const GraphSlamConfig& c, const core::SepsCodec& codec) {
+core::IsmTable<std::int8_t> make_table(const SubmapSlamConfig& c, const core::SepsCodec& codec) {
   return core::make_index_ism_table(
       core::GaussianBeamModel{c.sensor.sigma, 0.0}, c.cell, codec, ism_step_mm(c),
       static_cast<std::int32_t>(millimetres(c.sensor.max_range)), c.map.empty_divisor);
@@ -83,7 +83,7 @@ core::IsmTable<std::int8_t> make_table(const GraphSlamConfig& c, const core::Sep
 // reading may claim (p_levels = Pmax, the narrow ISM's bound: the exact ISM's empty cells reach
 // probabilities near 0, which one reading must not carry), empty values divided likewise.
 template <>
-core::IsmTable<LogOdds> make_table(const GraphSlamConfig& c, const core::SepsCodec& codec) {
+core::IsmTable<LogOdds> make_table(const SubmapSlamConfig& c, const core::SepsCodec& codec) {
   const core::IsmTable<double> p = core::make_probability_ism_table(
       core::GaussianBeamModel{c.sensor.sigma, 0.0}, c.cell, ism_step_mm(c),
       static_cast<std::int32_t>(millimetres(c.sensor.max_range)));
@@ -100,7 +100,7 @@ core::IsmTable<LogOdds> make_table(const GraphSlamConfig& c, const core::SepsCod
 
 }  // namespace
 
-void check_graph_slam_config(const GraphSlamConfig& c) {
+void check_submap_slam_config(const SubmapSlamConfig& c) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
   require(positive(c.cell) && c.cell >= 0.005 && c.cell <= 1.0, "cell",
@@ -181,20 +181,20 @@ void check_graph_slam_config(const GraphSlamConfig& c) {
           "must be 1..1000");
 }
 
-struct GraphSlam::Engine {
+struct SubmapSlam::Engine {
   virtual ~Engine() = default;
   virtual void insert(const QuantizedScan& scan, std::shared_ptr<const SlamSensor> sensor,
                       double t) = 0;
   virtual void finish() = 0;
   virtual std::vector<core::Pose2> scan_poses() const = 0;  // SLAM frame
   virtual core::Grid<std::int8_t> map() const = 0;
-  GraphSlamConfig config;
+  SubmapSlamConfig config;
   core::SepsCodec codec{8, 0.1};
-  GraphSlamStats stats;
+  SubmapSlamStats stats;
 };
 
 template <class Cell>
-struct GraphSlam::EngineOf final : GraphSlam::Engine {
+struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
   struct Node {
     SlamPose local;
     std::size_t vertex = 0;
@@ -222,7 +222,7 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
     SlamPose local;
   };
 
-  EngineOf(const GraphSlamConfig& c, const core::SepsCodec& codec_, TrackerSetup setup)
+  EngineOf(const SubmapSlamConfig& c, const core::SepsCodec& codec_, TrackerSetup setup)
       : tracker(std::move(setup), make_table<Cell>(c, codec_)) {
     config = c;
     codec = codec_;
@@ -517,10 +517,10 @@ struct GraphSlam::EngineOf final : GraphSlam::Engine {
   }
 };
 
-GraphSlam::GraphSlam(const GraphSlamConfig& config, core::Arithmetic arithmetic,
-                     const core::Scan& first)
+SubmapSlam::SubmapSlam(const SubmapSlamConfig& config, core::Arithmetic arithmetic,
+                       const core::Scan& first)
     : first_t_(first.t), frame_(first.robot), previous_robot_(first.robot) {
-  check_graph_slam_config(config);
+  check_submap_slam_config(config);
   sensor_for(first, scan_label(1, first.t));
   TrackerSetup s;
   s.cell_mm = static_cast<std::int32_t>(millimetres(config.cell));
@@ -548,7 +548,7 @@ GraphSlam::GraphSlam(const GraphSlamConfig& config, core::Arithmetic arithmetic,
     engine_ = std::make_unique<EngineOf<LogOdds>>(config, codec, std::move(s));
 }
 
-double pyramid_cache_bytes(const GraphSlamConfig& config, core::Arithmetic arithmetic,
+double pyramid_cache_bytes(const SubmapSlamConfig& config, core::Arithmetic arithmetic,
                            double submap_cells) {
   const SearchWindow loops = search_window(config.loops.window, config.loops.window_degrees, 0.0,
                                            0.0, static_cast<std::int32_t>(millimetres(config.cell)),
@@ -560,12 +560,12 @@ double pyramid_cache_bytes(const GraphSlamConfig& config, core::Arithmetic arith
                   std::max(static_cast<double>(kPyramidCacheBytes), one));
 }
 
-GraphSlam::~GraphSlam() = default;
-GraphSlam::GraphSlam(GraphSlam&&) noexcept = default;
-GraphSlam& GraphSlam::operator=(GraphSlam&&) noexcept = default;
+SubmapSlam::~SubmapSlam() = default;
+SubmapSlam::SubmapSlam(SubmapSlam&&) noexcept = default;
+SubmapSlam& SubmapSlam::operator=(SubmapSlam&&) noexcept = default;
 
-std::shared_ptr<const SlamSensor> GraphSlam::sensor_for(const core::Scan& scan,
-                                                        const std::string& label) {
+std::shared_ptr<const SlamSensor> SubmapSlam::sensor_for(const core::Scan& scan,
+                                                         const std::string& label) {
   for (auto it = sensors_.begin(); it != sensors_.end(); ++it)
     if (geometry_difference(scan, it->first) == nullptr) {
       std::rotate(sensors_.begin(), it, it + 1);
@@ -591,7 +591,7 @@ std::shared_ptr<const SlamSensor> GraphSlam::sensor_for(const core::Scan& scan,
   return sensors_.front().second;
 }
 
-void GraphSlam::insert(const core::Scan& scan) {
+void SubmapSlam::insert(const core::Scan& scan) {
   const std::size_t number = engine_->stats.scans + 1;
   const std::string label = scan_label(number, scan.t);
   std::shared_ptr<const SlamSensor> sensor = sensor_for(scan, label);
@@ -603,11 +603,11 @@ void GraphSlam::insert(const core::Scan& scan) {
   times_.push_back(scan.t);
 }
 
-void GraphSlam::finish() {
+void SubmapSlam::finish() {
   engine_->finish();
 }
 
-core::Pose2 GraphSlam::pose() const {
+core::Pose2 SubmapSlam::pose() const {
   const std::vector<core::Pose2> poses = engine_->scan_poses();
   if (poses.empty()) return frame_;
   core::Pose2 p = core::compose(frame_, poses.back());
@@ -615,7 +615,7 @@ core::Pose2 GraphSlam::pose() const {
   return p;
 }
 
-std::vector<TimedPose> GraphSlam::trajectory() const {
+std::vector<TimedPose> SubmapSlam::trajectory() const {
   const std::vector<core::Pose2> poses = engine_->scan_poses();
   std::vector<TimedPose> out;
   out.reserve(poses.size());
@@ -627,22 +627,22 @@ std::vector<TimedPose> GraphSlam::trajectory() const {
   return out;
 }
 
-core::Grid<std::int8_t> GraphSlam::map() const {
+core::Grid<std::int8_t> SubmapSlam::map() const {
   return engine_->map();
 }
-const core::SepsCodec& GraphSlam::codec() const {
+const core::SepsCodec& SubmapSlam::codec() const {
   return engine_->codec;
 }
-GraphSlamStats GraphSlam::stats() const {
+SubmapSlamStats SubmapSlam::stats() const {
   return engine_->stats;
 }
 
-SlamRun run_graph_slam(const core::Log& log, const GraphSlamConfig& config,
-                       core::Arithmetic arithmetic, GraphSlamStats* stats,
-                       const core::Progress& progress) {
-  check_graph_slam_config(config);
+SlamRun run_submap_slam(const core::Log& log, const SubmapSlamConfig& config,
+                        core::Arithmetic arithmetic, SubmapSlamStats* stats,
+                        const core::Progress& progress) {
+  check_submap_slam_config(config);
   check_slam_log(log);
-  GraphSlam slam(config, arithmetic, log.scans.front());
+  SubmapSlam slam(config, arithmetic, log.scans.front());
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
     slam.insert(log.scans[i]);
     if (progress) progress(i + 1, log.scans.size());
@@ -653,7 +653,7 @@ SlamRun run_graph_slam(const core::Log& log, const GraphSlamConfig& config,
   run.map = slam.map();
   run.codec = slam.codec();
   run.frame = slam.frame();
-  const GraphSlamStats s = slam.stats();
+  const SubmapSlamStats s = slam.stats();
   run.scans = s.scans;
   run.localizations = s.scans - s.unmatched_scans;
   run.mappings = s.nodes;
