@@ -81,12 +81,7 @@ void add_global_loc_options(CLI::App& cmd, localization::GlobalLocConfig& c) {
                  "and which ends within a cell of it, as a hit at its range (a wall met at a "
                  "grazing angle)")
       ->capture_default_str();
-  cmd.add_option_function<double>(
-         "--max-memory", [&c](double mb) { c.memory_limit = static_cast<std::size_t>(mb * 1e6); },
-         "the most the map's pose-grid tables and one localization's scores may take (MB): a "
-         "larger pose grid is refused before it is allocated")
-      ->check(real_range(1.0, 1e9))
-      ->default_str(std::to_string(c.memory_limit / 1000000));
+  add_max_memory_option(cmd, c.memory_limit);
 }
 
 void add_globloc_command(CLI::App& app) {

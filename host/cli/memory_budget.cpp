@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "cli/options.hpp"
 
@@ -30,15 +31,29 @@ std::string memory_text(double bytes) {
   return text;
 }
 
-void add_max_memory_option(CLI::App& cmd, double& limit_bytes) {
-  limit_bytes = default_memory_limit_bytes();
+namespace {
+
+void add_max_memory_option(CLI::App& cmd, const std::function<void(double)>& set_bytes) {
+  const double limit = default_memory_limit_bytes();
+  set_bytes(limit);
   cmd.add_option_function<double>(
-         "--max-memory", [&limit_bytes](double mb) { limit_bytes = mb * 1e6; },
+         "--max-memory", [set_bytes](double mb) { set_bytes(mb * 1e6); },
          "the most memory the run's large buffers may take (MB; default: 3/4 of this "
          "machine's, " +
-             memory_text(limit_bytes) + "): a larger grid is refused before it is allocated")
+             memory_text(limit) + "): a larger grid is refused before it is allocated")
       ->check(real_range(1.0, 1e9))
       ->type_name("MB");
+}
+
+}  // namespace
+
+void add_max_memory_option(CLI::App& cmd, double& limit_bytes) {
+  add_max_memory_option(cmd, [&limit_bytes](double bytes) { limit_bytes = bytes; });
+}
+
+void add_max_memory_option(CLI::App& cmd, std::size_t& limit_bytes) {
+  add_max_memory_option(
+      cmd, [&limit_bytes](double bytes) { limit_bytes = static_cast<std::size_t>(bytes); });
 }
 
 void require_memory(double bytes, double limit_bytes, const std::string& option,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstddef>
 #include <string>
 
 namespace intgrid::cli {
@@ -17,9 +18,11 @@ double default_memory_limit_bytes();
 // "29.1 GB", "412 MB", "64.0 kB": bytes in decimal units, three significant digits.
 std::string memory_text(double bytes);
 
-// Adds --max-memory MB to cmd (the unit and range of globloc's --max-memory); `limit_bytes`
-// holds the limit in bytes (the default until the option is given).
+// Adds --max-memory MB to cmd, the same option for every command; `limit_bytes` holds the limit
+// in bytes (the default until the option is given). The std::size_t form sets a library's
+// configuration (localization::GlobalLocConfig::memory_limit).
 void add_max_memory_option(CLI::App& cmd, double& limit_bytes);
+void add_max_memory_option(CLI::App& cmd, std::size_t& limit_bytes);
 
 // Throws OptionError "OPTION: WHAT needs about N, more than the memory limit of L
 // (--max-memory)" when bytes > limit_bytes (or is not finite).

@@ -154,6 +154,28 @@ TEST_F(Cli, IsmOverTheMemoryLimitIsRefusedNamingTheModelOption) {
   }
 }
 
+// --max-memory is one option: the same help, default and range in every command that has it
+// (globloc had its own, 1000 MB by default whatever the machine).
+TEST_F(Cli, MaxMemoryIsTheSameOptionInEveryCommand) {
+  const auto option_help = [](const std::string& command) {
+    const CliRun r = run(command + " --help");
+    EXPECT_EQ(r.status, 0) << command << r.output;
+    const std::size_t start = r.output.find("--max-memory");
+    if (start == std::string::npos) return std::string("absent");
+    const std::size_t end = r.output.find("\n  -", start);
+    std::string text;  // the option's help with every run of white space as one space
+    for (const char c : r.output.substr(start, end - start))
+      if (!std::isspace(static_cast<unsigned char>(c)))
+        text += c;
+      else if (!text.empty() && text.back() != ' ')
+        text += ' ';
+    return text;
+  };
+  const std::string map = option_help("map");
+  EXPECT_NE(map.find("3/4 of this machine's"), std::string::npos) << map;
+  for (const char* command : {"slam", "globloc"}) EXPECT_EQ(option_help(command), map) << command;
+}
+
 TEST_F(Cli, PgmSizeDisagreeingWithHeaderIsNamed) {
   write("m.pgm", std::string("P5\n4 4\n255\n") + std::string(10, '\xff'));
   const fs::path yaml = write("m.yaml",
