@@ -17,9 +17,13 @@
 #include "intgrid/slam/scan_matching.hpp"
 #include "intgrid/slam/submap_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
+#include "simulated_run.hpp"
 
 namespace intgrid::slam {
 namespace {
+
+using test::record_run;
+using test::SimulatedRun;
 
 template <class Cell>
 Cell cell_of(int v) {
@@ -247,39 +251,6 @@ TEST(ScanMatching, RecoversTheTruePoseInInteger) {
   const core::SepsCodec codec = core::SepsCodec::for_levels(8, 0.6, 16);
   match_recovers_the_pose(
       core::make_index_ism_table(core::GaussianBeamModel{0.05, 0.0}, 0.05, codec, 6, 20000, 1));
-}
-
-// The simulated floor's corridor twice round, noisy odometry and a 361-beam lidar.
-struct SimulatedRun {
-  core::Log log;
-  std::vector<TimedPose> truth;
-};
-
-// A robot driven along truth in world, a scan every 0.2 s: the log carries the default noisy
-// odometry (seeded odometry_seed), each of its turns reported turn_scale times as large (a wheel
-// base calibrated wrong: a heading bias), and the sensor's noisy ranges (seeded range_seed).
-SimulatedRun record_run(const core::ProbabilityGrid& world, const std::vector<core::Pose2>& truth,
-                        std::uint64_t odometry_seed, const simulation::SensorConfig& sensor,
-                        std::uint64_t range_seed, double turn_scale = 1.0) {
-  simulation::SimRandom odometry_random(odometry_seed);
-  const std::vector<core::Pose2> unbiased =
-      simulation::noisy_odometry(truth, simulation::OdometryNoiseConfig{}, odometry_random);
-  std::vector<core::Pose2> odometry{unbiased.front()};
-  for (std::size_t i = 1; i < unbiased.size(); ++i) {
-    core::Pose2 step = core::relative(unbiased[i - 1], unbiased[i]);
-    step.theta = std::remainder(step.theta, 2 * std::numbers::pi) * turn_scale;
-    odometry.push_back(core::compose(odometry.back(), step));
-  }
-  simulation::SimRandom range_random(range_seed);
-  SimulatedRun run;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    core::Scan scan = simulation::simulate_scan(world, sensor, {}, truth[i], range_random);
-    scan.t = 0.2 * static_cast<double>(i);
-    scan.robot = odometry[i];
-    run.truth.push_back({scan.t, truth[i]});
-    run.log.scans.push_back(std::move(scan));
-  }
-  return run;
 }
 
 // The corridor loop of the simulated floor, 700 scans at 361 beams with the default odometry
