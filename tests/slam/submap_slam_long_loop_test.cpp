@@ -25,9 +25,8 @@ double position_error(const SlamRun& run, const test::SimulatedRun& sim, std::si
 // The loop closes where the robot returns (its first lap's start, met again from scan 2400):
 // measured 0.07 m off there at most, against the odometry's 28 m. The far side of the floor,
 // driven once, keeps what the front end did there: up to 0.60 m off (scans 1200 to 2200; ATE
-// 0.31 m); suspected: the front end shortens long corridors by a few tenths of a percent, a scan's
-// far hits past the submap's frontier scoring more when pulled back onto the mapped wall
-// (docs/results.md). The floors: 0.1 m at the return, ATE 0.45 m, 0.8 m at worst.
+// 0.31 m), the front end's own error there, whose cause is not found yet (docs/results.md). The
+// floors: 0.1 m at the return, ATE 0.45 m, 0.8 m at worst.
 TEST(SubmapSlamLongLoop, ClosesALoopThirteenMinutesRoundInInteger) {
   simulation::FloorplanConfig floor;
   floor.cell = 0.05;
