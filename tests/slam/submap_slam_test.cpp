@@ -338,6 +338,17 @@ TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
   holds_a_spinning_start(core::Arithmetic::floating);
 }
 
+// Sets every cell of world whose centre lies inside (x0, x1) x (y0, y1) (m) to value: a drawn
+// world's rooms (0, free) and obstacles (1).
+void fill_rectangle(core::ProbabilityGrid& world, double x0, double y0, double x1, double y1,
+                    double value) {
+  for (int iy = 0; iy < world.geometry.height; ++iy)
+    for (int ix = 0; ix < world.geometry.width; ++ix) {
+      const double x = world.geometry.centre_x(ix), y = world.geometry.centre_y(iy);
+      if (x > x0 && x < x1 && y > y0 && y < y1) world.at(ix, iy) = value;
+    }
+}
+
 // A start in a featureless corridor: 34 m long and 2 m wide with straight, plain walls, a room
 // with pillars at its east end. The robot starts 11 m from the corridor's blind west end and
 // drives east; with 8 m of range, for its first 15 m it sees only the two side walls, which fix
@@ -351,11 +362,7 @@ TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
 SimulatedRun featureless_corridor_start() {
   core::ProbabilityGrid world(core::GridGeometry{900, 200, 0.05, 0.0, 0.0}, 1.0);
   const auto carve = [&](double x0, double y0, double x1, double y1, double value) {
-    for (int iy = 0; iy < world.geometry.height; ++iy)
-      for (int ix = 0; ix < world.geometry.width; ++ix) {
-        const double x = (ix + 0.5) * 0.05, y = (iy + 0.5) * 0.05;
-        if (x > x0 && x < x1 && y > y0 && y < y1) world.at(ix, iy) = value;
-      }
+    fill_rectangle(world, x0, y0, x1, y1, value);
   };
   carve(1, 4, 35, 6, 0.0);   // the corridor
   carve(35, 1, 44, 9, 0.0);  // the room
@@ -374,22 +381,19 @@ void holds_a_featureless_corridor_start(core::Arithmetic arithmetic) {
   const SlamRun run = run_submap_slam(sim.log, SubmapSlamConfig{}, arithmetic, &stats);
   // Along the corridor (x) and across it (y) while only the side walls are in sight: both start
   // at the same pose.
-  const std::vector<core::Pose2> odometry_poses = [&] {
-    std::vector<core::Pose2> p;
-    for (const TimedPose& t : scan_poses(sim.log)) p.push_back(t.pose);
-    return p;
-  }();
+  const std::vector<TimedPose> odometry_trajectory = scan_poses(sim.log);
   double slam_along = 0, odometry_along = 0, slam_across = 0;
   std::size_t blind = 0;
   while (sim.truth[blind].pose.x < 27.0) {
     const core::Pose2& truth = sim.truth[blind].pose;
     slam_along = std::max(slam_along, std::abs(run.trajectory[blind].pose.x - truth.x));
     slam_across = std::max(slam_across, std::abs(run.trajectory[blind].pose.y - truth.y));
-    odometry_along = std::max(odometry_along, std::abs(odometry_poses[blind].x - truth.x));
+    odometry_along =
+        std::max(odometry_along, std::abs(odometry_trajectory[blind].pose.x - truth.x));
     ++blind;
   }
   const TrajectoryError slam = absolute_trajectory_error(run.trajectory, sim.truth);
-  const TrajectoryError odometry = absolute_trajectory_error(scan_poses(sim.log), sim.truth);
+  const TrajectoryError odometry = absolute_trajectory_error(odometry_trajectory, sim.truth);
   std::printf(
       "featureless corridor start (%zu scans blind along it): at most %.3f m off along it "
       "(odometry %.3f m), %.3f m across; ATE %.3f m (max %.3f m), odometry %.3f m; %zu closures\n",
@@ -513,11 +517,7 @@ TEST(SubmapSlam, ConfigCheckNamesTheField) {
 SimulatedRun look_alike_corridors(std::size_t scans) {
   core::ProbabilityGrid world(core::GridGeometry{680, 200, 0.05, 0.0, 0.0}, 1.0);
   const auto carve = [&](double x0, double y0, double x1, double y1) {
-    for (int iy = 0; iy < world.geometry.height; ++iy)
-      for (int ix = 0; ix < world.geometry.width; ++ix) {
-        const double x = (ix + 0.5) * 0.05, y = (iy + 0.5) * 0.05;
-        if (x > x0 && x < x1 && y > y0 && y < y1) world.at(ix, iy) = 0.0;
-      }
+    fill_rectangle(world, x0, y0, x1, y1, 0.0);
   };
   carve(1, 1, 31, 3);   // A
   carve(1, 5, 31, 7);   // B
