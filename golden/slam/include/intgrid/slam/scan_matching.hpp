@@ -203,14 +203,12 @@ Match<Cell> match_exhaustive(const LocalGrid<Cell>& grid, const core::IntegerRay
 template <class Cell>
 class MaxPyramid {
  public:
-  MaxPyramid(const LocalGrid<Cell>& grid, int levels)
-      : x0_(grid.x0()), y0_(grid.y0()), cells_(grid.cells().begin(), grid.cells().end()) {
-    width_ = grid.width();
-    height_ = grid.height();
+  MaxPyramid(const LocalGrid<Cell>& grid, int levels) : grid_(grid) {
     bounds_.resize(static_cast<std::size_t>(levels));
     if (levels == 0) return;
-    Level whole{width_, height_, std::vector<std::int8_t>(cells_.size())};
-    std::transform(cells_.begin(), cells_.end(), whole.cells.begin(), whole_index_above);
+    Level whole{grid.width(), grid.height(), std::vector<std::int8_t>(grid.cells().size())};
+    std::transform(grid.cells().begin(), grid.cells().end(), whole.cells.begin(),
+                   whole_index_above);
     bounds_[0] = coarser(whole, 1);
     for (int d = 1; d < levels; ++d)
       bounds_[static_cast<std::size_t>(d)] =
@@ -219,21 +217,15 @@ class MaxPyramid {
 
   int levels() const { return static_cast<int>(bounds_.size()); }
   // The grid's cell (cx, cy): level 0.
-  Cell cell(int cx, int cy) const {
-    const int x = cx - x0_, y = cy - y0_;
-    if (static_cast<unsigned>(x) >= static_cast<unsigned>(width_) ||
-        static_cast<unsigned>(y) >= static_cast<unsigned>(height_))
-      return Cell{};
-    return cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                  static_cast<std::size_t>(x)];
-  }
+  Cell cell(int cx, int cy) const { return grid_.at(cx, cy); }
   // The largest grid cell of [cx, cx + 2^d) x [cy, cy + 2^d) as a whole index (rounded up), d >= 1.
   std::int8_t bound(int d, int cx, int cy) const {
     const int shift = (1 << d) - 1;
-    return bounds_[static_cast<std::size_t>(d) - 1].get(cx - x0_ + shift, cy - y0_ + shift);
+    return bounds_[static_cast<std::size_t>(d) - 1].get(cx - grid_.x0() + shift,
+                                                        cy - grid_.y0() + shift);
   }
   std::size_t bytes() const {
-    std::size_t total = cells_.size() * sizeof(Cell);
+    std::size_t total = grid_.cells().size() * sizeof(Cell);
     for (const Level& l : bounds_) total += l.cells.size();
     return total;
   }
@@ -287,9 +279,7 @@ class MaxPyramid {
     return coarse;
   }
 
-  int x0_, y0_;
-  int width_ = 0, height_ = 0;
-  std::vector<Cell> cells_;
+  LocalGrid<Cell> grid_;       // level 0: a copy of the grid
   std::vector<Level> bounds_;  // levels 1 .. levels
 };
 
