@@ -28,6 +28,7 @@
 #include "intgrid/kernel/ism_kernel.hpp"
 #include "intgrid/localization/global_localization.hpp"
 #include "intgrid/simulation/simulator.hpp"
+#include "scan_insertion.hpp"
 
 using namespace intgrid::core;
 using namespace intgrid::kernel;
@@ -208,26 +209,8 @@ void BM_FuseGrids_DoubleBayes(benchmark::State& state) {
 BENCHMARK(BM_FuseGrids_DoubleBayes)->Unit(benchmark::kMillisecond);
 
 // ---------------------------------------------------------------------------
-// 3. Inserting every scan of the bundled reference log into a 5 cm grid.
-
-constexpr double kMapCell = 0.05;
-constexpr double kMapMargin = 1.0;
-const GaussianBeamModel kMapModel{0.05, 0.0};
-
-// The log and the grid covering it, read once.
-struct LogFixture {
-  Log log;
-  GridGeometry geometry;
-};
-const LogFixture& reference_log() {
-  static const LogFixture fixture = [] {
-    LogFixture f;
-    f.log = read_log(INTGRID_DATA_DIR "/malaga_telecom_loop_reference.log");
-    f.geometry = geometry_covering(f.log.scans, kMapCell, kMapMargin);
-    return f;
-  }();
-  return fixture;
-}
+// 3. Reading the bundled log; inserting every scan of the bundled reference log into a 5 cm grid
+// (bench/scan_insertion.hpp).
 
 // Reading the bundled 225-scan log from disk (items = scans; the file stays in the page cache).
 void BM_ReadLog(benchmark::State& state) {
@@ -241,52 +224,9 @@ void BM_ReadLog(benchmark::State& state) {
 }
 BENCHMARK(BM_ReadLog)->Unit(benchmark::kMillisecond);
 
-void report_insertion(benchmark::State& state, const InsertionStats& stats) {
-  state.SetItemsProcessed(static_cast<std::int64_t>(stats.scans));
-  state.counters["cells_per_scan"] =
-      stats.scans > 0 ? static_cast<double>(stats.cells_updated) / static_cast<double>(stats.scans)
-                      : 0.0;
-}
-
-void BM_ScanInsertion_Int8(benchmark::State& state) {
-  const LogFixture& fixture = reference_log();
-  const std::span<const Scan> scans = fixture.log.scans;
-  const SepsCodec codec = SepsCodec::for_levels(8, narrow_pmax(kMapCell, 0.05), 16);
-  IndexScanInserter<std::int8_t> inserter(kMapModel, kMapCell, codec, VetoBound::strongest_claim);
-  Grid<std::int8_t> grid(fixture.geometry, std::int8_t{0});
-  // Warm-up: the inserter caches one quantized ISM per distinct reading.
-  InsertionStats warm;
-  for (const Scan& scan : scans) inserter.insert(grid, scan, warm);
-
-  InsertionStats stats;
-  for (auto _ : state) {
-    state.PauseTiming();
-    std::fill(grid.cells.begin(), grid.cells.end(), std::int8_t{0});
-    state.ResumeTiming();
-    for (const Scan& scan : scans) inserter.insert(grid, scan, stats);
-    benchmark::DoNotOptimize(grid.cells.data());
-    benchmark::ClobberMemory();
-  }
-  report_insertion(state, stats);
-}
+using bench::BM_ScanInsertion_DoubleBayes;
+using bench::BM_ScanInsertion_Int8;
 BENCHMARK(BM_ScanInsertion_Int8)->Unit(benchmark::kMillisecond);
-
-void BM_ScanInsertion_DoubleBayes(benchmark::State& state) {
-  const LogFixture& fixture = reference_log();
-  const std::span<const Scan> scans = fixture.log.scans;
-  ProbabilityGrid grid(fixture.geometry, 0.5);
-
-  InsertionStats stats;
-  for (auto _ : state) {
-    state.PauseTiming();
-    std::fill(grid.cells.begin(), grid.cells.end(), 0.5);
-    state.ResumeTiming();
-    for (const Scan& scan : scans) insert_scan(grid, scan, kMapModel, stats);
-    benchmark::DoNotOptimize(grid.cells.data());
-    benchmark::ClobberMemory();
-  }
-  report_insertion(state, stats);
-}
 BENCHMARK(BM_ScanInsertion_DoubleBayes)->Unit(benchmark::kMillisecond);
 
 // ---------------------------------------------------------------------------

@@ -8,7 +8,6 @@
 // ratios compare what a user gets for the same log, not the same work.
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -21,80 +20,19 @@
 #include <mrpt/poses/CPose3D.h>
 #include <octomap/octomap.h>
 
-#include "intgrid/core/grid.hpp"
-#include "intgrid/core/mapping.hpp"
-#include "intgrid/core/resolution.hpp"
-#include "intgrid/core/scan_insertion.hpp"
-#include "intgrid/core/sensor_model.hpp"
-#include "intgrid/core/seps.hpp"
 #include "intgrid/core/types.hpp"
-#include "intgrid/io/log_io.hpp"
+#include "scan_insertion.hpp"
 
 namespace {
 
 namespace core = intgrid::core;
+using intgrid::bench::BM_ScanInsertion_DoubleBayes;
+using intgrid::bench::BM_ScanInsertion_Int8;
+using intgrid::bench::kMapCell;
+using intgrid::bench::reference_log;
 
-constexpr double kCell = 0.05;
-constexpr double kMargin = 1.0;
-const core::GaussianBeamModel kModel{0.05, 0.0};
-
-struct Fixture {
-  core::Log log;
-  core::GridGeometry geometry;
-};
-const Fixture& reference_log() {
-  static const Fixture fixture = [] {
-    Fixture f;
-    f.log = intgrid::io::read_log(INTGRID_DATA_DIR "/malaga_telecom_loop_reference.log");
-    f.geometry = core::geometry_covering(f.log.scans, kCell, kMargin);
-    return f;
-  }();
-  return fixture;
-}
-
-void BM_Peer_IntgridInt8(benchmark::State& state) {
-  const Fixture& f = reference_log();
-  const core::SepsCodec codec = core::SepsCodec::for_levels(8, core::narrow_pmax(kCell, 0.05), 16);
-  core::IndexScanInserter<std::int8_t> inserter(kModel, kCell, codec,
-                                                core::VetoBound::strongest_claim);
-  core::Grid<std::int8_t> grid(f.geometry, std::int8_t{0});
-  core::InsertionStats warm;  // the inserter caches one quantized ISM per distinct reading
-  for (const core::Scan& scan : f.log.scans) inserter.insert(grid, scan, warm);
-  core::InsertionStats stats;
-  for (auto _ : state) {
-    state.PauseTiming();
-    std::fill(grid.cells.begin(), grid.cells.end(), std::int8_t{0});
-    state.ResumeTiming();
-    for (const core::Scan& scan : f.log.scans) inserter.insert(grid, scan, stats);
-    benchmark::DoNotOptimize(grid.cells.data());
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(stats.scans));
-  state.counters["cells_per_scan"] =
-      static_cast<double>(stats.cells_updated) / static_cast<double>(stats.scans);
-  state.counters["cells_known"] =
-      static_cast<double>(grid.cells.size() - static_cast<std::size_t>(std::count(
-                                                  grid.cells.begin(), grid.cells.end(), 0)));
-}
-BENCHMARK(BM_Peer_IntgridInt8)->Unit(benchmark::kMillisecond);
-
-void BM_Peer_IntgridDouble(benchmark::State& state) {
-  const Fixture& f = reference_log();
-  core::ProbabilityGrid grid(f.geometry, 0.5);
-  core::InsertionStats stats;
-  for (auto _ : state) {
-    state.PauseTiming();
-    std::fill(grid.cells.begin(), grid.cells.end(), 0.5);
-    state.ResumeTiming();
-    for (const core::Scan& scan : f.log.scans) core::insert_scan(grid, scan, kModel, stats);
-    benchmark::DoNotOptimize(grid.cells.data());
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(stats.scans));
-  state.counters["cells_per_scan"] =
-      static_cast<double>(stats.cells_updated) / static_cast<double>(stats.scans);
-}
-BENCHMARK(BM_Peer_IntgridDouble)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScanInsertion_Int8)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScanInsertion_DoubleBayes)->Unit(benchmark::kMillisecond);
 
 // A scan as MRPT's observation: its beams spread symmetrically over `aperture` about the
 // sensor's axis, so the axis is turned to the middle bearing.
@@ -117,7 +55,7 @@ mrpt::obs::CObservation2DRangeScan mrpt_scan(const core::Scan& s) {
 }
 
 void BM_Peer_Mrpt(benchmark::State& state) {
-  const Fixture& f = reference_log();
+  const intgrid::bench::LogFixture& f = reference_log();
   std::vector<mrpt::obs::CObservation2DRangeScan> observations;
   std::vector<mrpt::poses::CPose3D> poses;
   for (const core::Scan& s : f.log.scans) {
@@ -128,7 +66,7 @@ void BM_Peer_Mrpt(benchmark::State& state) {
   mrpt::maps::COccupancyGridMap2D grid(
       static_cast<float>(g.origin_x), static_cast<float>(g.origin_x + g.width * g.resolution),
       static_cast<float>(g.origin_y), static_cast<float>(g.origin_y + g.height * g.resolution),
-      static_cast<float>(kCell));
+      static_cast<float>(kMapCell));
   grid.insertionOptions.maxDistanceInsertion = 1e3f;  // the scans' own maximum range decides
   grid.insertionOptions.considerInvalidRangesAsFreeSpace = false;
   std::size_t scans = 0;
@@ -150,7 +88,7 @@ void BM_Peer_Mrpt(benchmark::State& state) {
 BENCHMARK(BM_Peer_Mrpt)->Unit(benchmark::kMillisecond);
 
 void BM_Peer_OctoMap(benchmark::State& state) {
-  const Fixture& f = reference_log();
+  const intgrid::bench::LogFixture& f = reference_log();
   // Each scan's hits in the world frame and its sensor's position.
   std::vector<octomap::Pointcloud> clouds(f.log.scans.size());
   std::vector<octomap::point3d> origins;
@@ -165,7 +103,7 @@ void BM_Peer_OctoMap(benchmark::State& state) {
                           static_cast<float>(sensor.y + s.ranges[i] * std::sin(a)), 0.0f);
     }
   }
-  octomap::OcTree tree(kCell);
+  octomap::OcTree tree(kMapCell);
   std::size_t scans = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -191,7 +129,7 @@ class RatioReporter : public benchmark::ConsoleReporter {
         cpu_seconds_[r.benchmark_name()] = r.GetAdjustedCPUTime() / 1e3;  // reported in ms
   }
   void print_ratios() const {
-    const auto reference = cpu_seconds_.find("BM_Peer_IntgridInt8");
+    const auto reference = cpu_seconds_.find("BM_ScanInsertion_Int8");
     if (reference == cpu_seconds_.end()) return;
     const auto scans = static_cast<double>(reference_log().log.scans.size());
     std::printf("\n| insertion | scans/s | CPU time against intgrid integer |\n|---|---:|---:|\n");
