@@ -23,10 +23,12 @@ double position_error(const SlamRun& run, const test::SimulatedRun& sim, std::si
 }
 
 // The loop closes where the robot returns (its first lap's start, met again from scan 2400):
-// measured 0.07 m off there at most, against the odometry's 28 m. The far side of the floor,
-// driven once, keeps what the front end did there: up to 0.60 m off (scans 1200 to 2200; ATE
-// 0.31 m), the front end's own error there, whose cause is not found yet (docs/results.md). The
-// floors: 0.1 m at the return, ATE 0.45 m, 0.8 m at worst.
+// measured 0.14 m off there at most, against the odometry's 28 m. The far side of the floor,
+// driven once, keeps what the front end did there: up to 0.43 m off (scans 1200 to 2200; ATE
+// 0.22 m). Most of it is the front end's translation coming out too long (0.18%): the exact ISM
+// leans a fused wall outward by a part of its sigma (SubmapSlamConfig::Sensor::sigma; at the
+// former 0.05 m: 0.34% too long, 0.60 m off on the far side, ATE 0.31 m, but 0.07 m at the
+// return). The floors: 0.2 m at the return, 0.55 m on the far side, ATE 0.3 m, 0.6 m at worst.
 TEST(SubmapSlamLongLoop, ClosesALoopThirteenMinutesRoundInInteger) {
   simulation::FloorplanConfig floor;
   floor.cell = 0.05;
@@ -56,9 +58,10 @@ TEST(SubmapSlamLongLoop, ClosesALoopThirteenMinutesRoundInInteger) {
       slam.rmse, slam.max, far_side, back_at_the_start, odometry_end, stats.loop_closures,
       stats.loop_searches);
   EXPECT_GT(odometry_end, 10.0);  // the drift at the return is metres: the test means something
-  EXPECT_LT(back_at_the_start, 0.1);
-  EXPECT_LT(slam.rmse, 0.45);
-  EXPECT_LT(slam.max, 0.8);
+  EXPECT_LT(back_at_the_start, 0.2);
+  EXPECT_LT(far_side, 0.55);
+  EXPECT_LT(slam.rmse, 0.3);
+  EXPECT_LT(slam.max, 0.6);
 }
 
 }  // namespace
