@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <random>
@@ -33,13 +34,14 @@ Cell cell_of(int v) {
     return static_cast<std::int8_t>(v);
 }
 
-// A grid with random cells in [-max, max] over [x0, x0 + w) x [y0, y0 + h), each written by a
-// reading whose ISM is that one value.
+// A grid with random cells in [lowest, highest] over [x0, x0 + w) x [y0, y0 + h), each written
+// by a reading whose ISM is that one value.
 template <class Cell>
-LocalGrid<Cell> random_grid(std::mt19937& rng, int x0, int y0, int w, int h, int max) {
+LocalGrid<Cell> random_grid(std::mt19937& rng, int x0, int y0, int w, int h, int lowest,
+                            int highest) {
   LocalGrid<Cell> grid(50);
   grid.cover(x0, y0, x0 + w - 1, y0 + h - 1);
-  std::uniform_int_distribution<int> value(-max, max);
+  std::uniform_int_distribution<int> value(lowest, highest);
   // A table of one reading, one cell: the reading's own cell gets the value.
   const std::vector<std::int32_t> sin = core::make_sine_table_q16();
   const core::IntegerRays rays(sin, 50);
@@ -50,9 +52,15 @@ LocalGrid<Cell> random_grid(std::mt19937& rng, int x0, int y0, int w, int h, int
       const std::int32_t bearing[] = {0}, range[] = {1};
       // A 1 mm reading lays its one value on the first cell of its line of sight: the next one.
       grid.insert(rays, table, std::int64_t{x - 1} * 50, std::int64_t{y} * 50, 0, bearing, range, 2,
-                  max);
+                  std::max(-lowest, highest));
     }
   return grid;
+}
+
+// The same in [-max, max].
+template <class Cell>
+LocalGrid<Cell> random_grid(std::mt19937& rng, int x0, int y0, int w, int h, int max) {
+  return random_grid<Cell>(rng, x0, y0, w, h, -max, max);
 }
 
 template <class Cell>
@@ -190,6 +198,54 @@ void branch_and_bound_finds_the_exhaustive_maximum() {
         match_branch_and_bound(pyramid, rays, points, guess, window, 100, exhaustive.score);
     EXPECT_TRUE(at.found);
     EXPECT_EQ(at.score, exhaustive.score);
+  }
+}
+
+// The exhaustive search against a sum written out hit by hit: more hits than its 16-bit partial
+// sums take at a time (1000 against 256), on cells all at the largest index, all at its
+// negative, or random, with windows that leave the grid on every side.
+TEST(ExhaustiveSearch, SumsEveryHitOfManyOnSaturatedCellsInInteger) {
+  std::mt19937 rng(5);
+  const std::vector<std::int32_t> sin = core::make_sine_table_q16();
+  const core::IntegerRays rays(sin, 50);
+  for (const auto& [lowest, highest] : {std::pair{127, 127}, {-127, -127}, {-127, 127}}) {
+    const LocalGrid<std::int8_t> grid =
+        random_grid<std::int8_t>(rng, -40, -40, 80, 80, lowest, highest);
+    ScanPoints points;
+    std::uniform_int_distribution<int> coordinate(-1800, 1800);
+    for (int p = 0; p < 1000; ++p) {
+      points.x_mm.push_back(coordinate(rng));
+      points.y_mm.push_back(coordinate(rng));
+    }
+    SearchWindow window;
+    window.cells = 6;
+    window.steps = 2;
+    window.step_units = 128;
+    const SlamPose guess{-20, 35, 700};
+    std::int64_t best = std::numeric_limits<std::int64_t>::min();
+    SlamPose best_pose;
+    std::vector<int> cx, cy;
+    for (int k = -window.steps; k <= window.steps; ++k)
+      for (int j = -window.cells; j <= window.cells; ++j)
+        for (int i = -window.cells; i <= window.cells; ++i) {
+          const SlamPose pose{guess.x_mm + i * 50, guess.y_mm + j * 50,
+                              guess.theta + k * window.step_units};
+          matching_detail::hit_cells(rays, points, pose.x_mm, pose.y_mm,
+                                     static_cast<std::int32_t>(pose.theta), cx, cy);
+          std::int64_t sum = 0;
+          for (std::size_t p = 0; p < cx.size(); ++p) sum += grid.at(cx[p], cy[p]);
+          if (sum > best) {
+            best = sum;
+            best_pose = pose;
+          }
+        }
+    const Match<std::int8_t> found =
+        match_exhaustive(grid, rays, points, guess, window, 127, std::int64_t{-1000000});
+    EXPECT_EQ(found.evidence, best) << "cells " << lowest << " to " << highest;
+    EXPECT_EQ(found.score, best);
+    EXPECT_EQ(found.pose.x_mm, best_pose.x_mm);
+    EXPECT_EQ(found.pose.y_mm, best_pose.y_mm);
+    EXPECT_EQ(found.pose.theta, best_pose.theta);
   }
 }
 

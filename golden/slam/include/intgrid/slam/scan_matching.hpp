@@ -142,10 +142,26 @@ Match<Cell> match_exhaustive(const LocalGrid<Cell>& grid, const core::IntegerRay
   const int n = 2 * window.cells + 1;
   const S full = S(static_cast<std::int64_t>(points.size()) * max_index);
   std::vector<int> cx, cy;
-  // Per-pose sums of whole indices fit 32 bits (100000 beams of 127 at most): adds the compiler
-  // vectorizes.
+  // Per-pose sums of whole indices fit 32 bits (100000 beams of 127 at most). S_eps cells are
+  // first summed in 16 bits, kHitsPer16Bits hits at a time, over rows padded to whole blocks of
+  // 16 cells: fixed-width adds of 16 lanes that the compiler vectorizes, where 13 cells of 32
+  // bits a row did not (the integer search took 1.4 times the double one's time on ACES).
+  constexpr bool kIndices = std::is_same_v<Cell, std::int8_t>;
+  constexpr int kBlock = 16;
+  constexpr int kHitsPer16Bits = 256;  // 256 x 128 = 2^15: no partial sum leaves int16
   using Sum = std::conditional_t<std::is_same_v<S, double>, double, std::int32_t>;
-  std::vector<Sum> sums(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+  const int stride = kIndices ? (n + kBlock - 1) / kBlock * kBlock : n;
+  const auto cells_of = [&](int rows) {
+    return static_cast<std::size_t>(rows) * static_cast<std::size_t>(stride);
+  };
+  std::vector<Sum> sums(cells_of(n));
+  std::vector<std::int16_t> partial(kIndices ? cells_of(n) : 0);
+  int partial_hits = 0;
+  const auto flush_partial = [&] {
+    for (std::size_t q = 0; q < partial.size(); ++q) sums[q] += partial[q];
+    std::fill(partial.begin(), partial.end(), std::int16_t{0});
+    partial_hits = 0;
+  };
   Match<Cell> best;
   bool any = false;
   const std::int64_t c = rays.cell_mm();
@@ -156,27 +172,35 @@ Match<Cell> match_exhaustive(const LocalGrid<Cell>& grid, const core::IntegerRay
     std::fill(sums.begin(), sums.end(), Sum{});
     for (std::size_t p = 0; p < points.size(); ++p) {
       const int x0 = cx[p] - window.cells, y0 = cy[p] - window.cells;
-      if (x0 >= grid.x0() && y0 >= grid.y0() && x0 + n <= grid.x0() + grid.width() &&
+      if (x0 >= grid.x0() && y0 >= grid.y0() && x0 + stride <= grid.x0() + grid.width() &&
           y0 + n <= grid.y0() + grid.height()) {
-        // The whole window inside the grid: rows read straight.
+        // The whole (padded) window inside the grid: rows read straight.
         const Cell* cells =
             grid.cells().data() +
             (static_cast<std::ptrdiff_t>(y0 - grid.y0()) * grid.width() + (x0 - grid.x0()));
         for (int j = 0; j < n; ++j) {
-          Sum* row = &sums[static_cast<std::size_t>(j) * static_cast<std::size_t>(n)];
           const Cell* source = cells + static_cast<std::ptrdiff_t>(j) * grid.width();
-          for (int i = 0; i < n; ++i) row[i] += score_value(source[i]);
+          if constexpr (kIndices) {
+            std::int16_t* row = &partial[cells_of(j)];
+            for (int b = 0; b < stride; b += kBlock)
+              for (int i = 0; i < kBlock; ++i) row[b + i] += source[b + i];
+          } else {
+            Sum* row = &sums[cells_of(j)];
+            for (int i = 0; i < n; ++i) row[i] += score_value(source[i]);
+          }
         }
+        if (kIndices && ++partial_hits == kHitsPer16Bits) flush_partial();
         continue;
       }
       for (int j = 0; j < n; ++j) {
-        Sum* row = &sums[static_cast<std::size_t>(j) * static_cast<std::size_t>(n)];
+        Sum* row = &sums[cells_of(j)];
         for (int i = 0; i < n; ++i) row[i] += score_value(grid.at(x0 + i, y0 + j));
       }
     }
+    if (kIndices) flush_partial();
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const S evidence = S(sums[static_cast<std::size_t>(j * n + i)]);
+        const S evidence = S(sums[cells_of(j) + static_cast<std::size_t>(i)]);
         const S score =
             evidence - matching_detail::prior_cost<Cell>(window, full, (i - window.cells) * c,
                                                          (j - window.cells) * c, da);
