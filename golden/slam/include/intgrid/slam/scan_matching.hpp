@@ -106,27 +106,42 @@ inline void turned_hits(const core::IntegerRays& rays, const ScanPoints& points,
   }
 }
 
-// The hits (qx, qy), turned to the pose's heading (mm), scored at the translation (x, y) by
-// bilinear interpolation of the cells, in 1/65536 of an index.
+// The hits at (hx, hy), in 1/256 cell from the centre of cell (0, 0), scored by bilinear
+// interpolation of the cells, in 1/65536 of an index: cell centres are lattice points, so the
+// four around a hit weigh by its fractions.
 template <class Cell>
-MatchScore<Cell> interpolated_evidence(const LocalGrid<Cell>& grid, const std::vector<int>& qx,
-                                       const std::vector<int>& qy, std::int64_t x, std::int64_t y,
-                                       std::int64_t c) {
+MatchScore<Cell> interpolated_evidence(const LocalGrid<Cell>& grid,
+                                       std::span<const std::int64_t> hx,
+                                       std::span<const std::int64_t> hy) {
   using S = MatchScore<Cell>;
   S sum{};
-  for (std::size_t p = 0; p < qx.size(); ++p) {
-    // The hit in 1/256 cell from the centre of cell (0, 0): cell centres are lattice points, so
-    // the four around it weigh by the fractions.
-    const std::int64_t hx = floor_div((x + qx[p]) * 256, c);
-    const std::int64_t hy = floor_div((y + qy[p]) * 256, c);
-    const int ix = static_cast<int>(hx >> 8), iy = static_cast<int>(hy >> 8);
-    const std::int64_t fx = hx & 255, fy = hy & 255;
+  for (std::size_t p = 0; p < hx.size(); ++p) {
+    const int ix = static_cast<int>(hx[p] >> 8), iy = static_cast<int>(hy[p] >> 8);
+    const std::int64_t fx = hx[p] & 255, fy = hy[p] & 255;
     sum += S((256 - fx) * (256 - fy)) * score_value(grid.at(ix, iy)) +
            S(fx * (256 - fy)) * score_value(grid.at(ix + 1, iy)) +
            S((256 - fx) * fy) * score_value(grid.at(ix, iy + 1)) +
            S(fx * fy) * score_value(grid.at(ix + 1, iy + 1));
   }
   return sum;
+}
+
+// The hits q (one axis, turned to the pose's heading, mm) shifted by t (mm), in 1/256 cell.
+inline void hit_positions_q8(const std::vector<int>& q, std::int64_t t, std::int64_t c,
+                             std::span<std::int64_t> out) {
+  for (std::size_t p = 0; p < q.size(); ++p) out[p] = floor_div((t + q[p]) * 256, c);
+}
+
+// The hits (qx, qy), turned to the pose's heading (mm), scored at the translation (x, y).
+template <class Cell>
+MatchScore<Cell> interpolated_evidence(const LocalGrid<Cell>& grid, const std::vector<int>& qx,
+                                       const std::vector<int>& qy, std::int64_t x, std::int64_t y,
+                                       std::int64_t c) {
+  std::vector<std::int64_t> hx(qx.size()), hy(qy.size());
+  hit_positions_q8(qx, x, c, hx);
+  hit_positions_q8(qy, y, c, hy);
+  return interpolated_evidence(grid, std::span<const std::int64_t>(hx),
+                               std::span<const std::int64_t>(hy));
 }
 
 }  // namespace matching_detail
@@ -415,13 +430,27 @@ Match<Cell> refine_match(const LocalGrid<Cell>& grid, const core::IntegerRays& r
   Match<Cell> best = lattice;
   bool any = false;
   std::vector<int> qx, qy;
+  // The hits' positions at each of the nine offsets along x and along y, computed once a heading
+  // (a division each) rather than once a pose.
+  constexpr int kOffsets = 9;
+  const std::size_t n = points.size();
+  std::vector<std::int64_t> hx(kOffsets * n), hy(kOffsets * n);
+  const auto at_offset = [n](std::vector<std::int64_t>& h, int k) {
+    return std::span<std::int64_t>(h).subspan(static_cast<std::size_t>(k + 4) * n, n);
+  };
   for (int m = -2; m <= 2; ++m) {
     const std::int64_t theta = lattice.pose.theta + m * window.step_units / 2;
     matching_detail::turned_hits(rays, points, theta, qx, qy);
+    for (int k = -4; k <= 4; ++k) {
+      matching_detail::hit_positions_q8(qx, lattice.pose.x_mm + k * c / 4, c, at_offset(hx, k));
+      matching_detail::hit_positions_q8(qy, lattice.pose.y_mm + k * c / 4, c, at_offset(hy, k));
+    }
     for (int v = -4; v <= 4; ++v)
       for (int u = -4; u <= 4; ++u) {
         const std::int64_t x = lattice.pose.x_mm + u * c / 4, y = lattice.pose.y_mm + v * c / 4;
-        S sum = matching_detail::interpolated_evidence(grid, qx, qy, x, y, c);
+        S sum = matching_detail::interpolated_evidence(
+            grid, std::span<const std::int64_t>(at_offset(hx, u)),
+            std::span<const std::int64_t>(at_offset(hy, v)));
         sum -= matching_detail::prior_cost<Cell>(window, full, x - guess.x_mm, y - guess.y_mm,
                                                  theta - guess.theta);
         if (!any || sum > best.score) {
