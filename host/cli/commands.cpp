@@ -168,6 +168,11 @@ void add_map_command(CLI::App& app) {
   add_arithmetic_option(*cmd, o->arithmetic, "int: S_eps indices; float: double-precision Bayes")
       ->default_str("int");
   add_model_options(*cmd, *o);
+  cmd->add_option("--threads", o->threads,
+                  "threads inserting the log, each into its own band of the grid's rows (0: every "
+                  "core); the same map for any count")
+      ->transform(whole_range(0, 256))
+      ->capture_default_str();
   add_max_memory_option(*cmd, o->max_memory_bytes);
   cmd->add_flag("--json", *json, "print the run's figures as JSON");
   cmd->callback([o, json] {

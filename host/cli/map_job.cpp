@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "cli/log_input.hpp"
 #include "cli/options.hpp"
@@ -69,10 +72,16 @@ core::GridGeometry geometry_for(const core::Log& log, const MapJobOptions& o) {
   }
 }
 
+int thread_count(const MapJobOptions& o) {
+  return o.threads > 0
+             ? o.threads
+             : static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+}
+
 // The job's large allocations, estimated before any is made: the grid (the probabilities, the
 // integer path's indices, the image and the PGM's bytes) and the ISM of the longest reading
 // (in double, and in the integer path quantized once per millimetre of range, which the
-// inserter keeps).
+// inserter keeps), once for each thread.
 void require_memory_for(const core::Log& log, const core::GridGeometry& geometry,
                         const MapJobOptions& o) {
   const double cells = static_cast<double>(geometry.width) * geometry.height;
@@ -93,7 +102,8 @@ void require_memory_for(const core::Log& log, const core::GridGeometry& geometry
       }
   const double ism_cells = std::ceil((longest + 8.0 * o.model.sigma(longest)) / o.resolution);
   const double ism_bytes =
-      ism_cells * (sizeof(double) + static_cast<double>(millimetres.size()) * index_bytes);
+      ism_cells * (sizeof(double) + static_cast<double>(millimetres.size()) * index_bytes) *
+      thread_count(o);
   const auto metres = [](double v) { return io::printed("%.3g m", v); };
   require_memory(ism_bytes, o.max_memory_bytes, o.model.k_d * longest > 1.0 ? "--k-d" : "--sigma",
                  "the ISM of the log's longest reading (" + metres(longest) +
@@ -104,30 +114,91 @@ void require_memory_for(const core::Log& log, const core::GridGeometry& geometry
                                         : ""));
 }
 
+// The grid's rows cut into `count` bands of about as many scans' sensor positions each (a
+// scan's cells lie around its sensor), so that the threads share the work; any cut gives the
+// same map.
+std::vector<core::RowBand> row_bands(const core::Log& log, const core::GridGeometry& geometry,
+                                     int count) {
+  std::vector<int> rows;
+  for (const core::Scan& scan : log.scans)
+    rows.push_back(std::clamp(geometry.cell_y(scan.sensor_pose().y), 0, geometry.height - 1));
+  std::sort(rows.begin(), rows.end());
+  std::vector<core::RowBand> bands;
+  int first = 0;
+  for (int b = 1; b <= count && first < geometry.height; ++b) {
+    const int last = b == count ? geometry.height - 1
+                                : std::max(first, rows[rows.size() * static_cast<std::size_t>(b) /
+                                                       static_cast<std::size_t>(count)]);
+    bands.push_back({first, last});
+    first = last + 1;
+  }
+  return bands;
+}
+
+// Runs insert(band, stats, progress) for each band on its own thread (the first on this one,
+// with the progress), and returns the first band's reading counts with every band's cells.
+template <class Insert>
+core::InsertionStats insert_by_bands(const std::vector<core::RowBand>& bands,
+                                     const core::Progress& progress, const Insert& insert) {
+  std::vector<core::InsertionStats> stats(bands.size());
+  std::vector<std::exception_ptr> errors(bands.size());
+  const auto run = [&](std::size_t b) {
+    try {
+      insert(bands[b], stats[b], b == 0 ? progress : core::Progress{});
+    } catch (...) {
+      errors[b] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t b = 1; b < bands.size(); ++b) threads.emplace_back(run, b);
+  run(0);
+  for (std::thread& t : threads) t.join();
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  core::InsertionStats total = stats.front();
+  total.cells_updated = 0;
+  for (const core::InsertionStats& s : stats) total.cells_updated += s.cells_updated;
+  return total;
+}
+
 template <class Index>
 core::ProbabilityGrid map_with_indices(const core::Log& log, const MapJobOptions& o,
                                        const core::SepsCodec& codec,
                                        const core::GridGeometry& geometry,
+                                       const std::vector<core::RowBand>& bands,
                                        core::InsertionStats& stats) {
-  core::IndexScanInserter<Index> inserter(o.model, o.resolution, codec, o.veto);
+  core::Grid<Index> grid(geometry, Index{0});
   TerminalProgress progress("mapping (integer)");
-  return core::to_probabilities(
-      core::map_indices(log.scans, inserter, geometry, stats, std::ref(progress)), codec);
+  stats = insert_by_bands(
+      bands, std::ref(progress),
+      [&](core::RowBand band, core::InsertionStats& s, const core::Progress& p) {
+        // Each thread keeps its own ISM per reading.
+        core::IndexScanInserter<Index> inserter(o.model, o.resolution, codec, o.veto);
+        core::insert_scans(grid, log.scans, inserter, s, band, p);
+      });
+  return core::to_probabilities(grid, codec);
 }
 
 MapJobResult map_log(const core::Log& log, const core::GridGeometry& geometry,
                      const MapJobOptions& o) {
   MapJobResult result;
   const auto start = std::chrono::steady_clock::now();
+  const std::vector<core::RowBand> bands = row_bands(log, geometry, thread_count(o));
   if (o.arithmetic == core::Arithmetic::integer) {
     result.codec = codec_for(o);
     result.map =
-        o.bits <= 8 ? map_with_indices<std::int8_t>(log, o, *result.codec, geometry, result.stats)
-                    : map_with_indices<std::int16_t>(log, o, *result.codec, geometry, result.stats);
+        o.bits <= 8
+            ? map_with_indices<std::int8_t>(log, o, *result.codec, geometry, bands, result.stats)
+            : map_with_indices<std::int16_t>(log, o, *result.codec, geometry, bands, result.stats);
   } else {
+    core::check_model(o.model);
+    result.map = core::ProbabilityGrid(geometry, 0.5);
     TerminalProgress progress("mapping (double)");
-    result.map =
-        core::map_probabilities(log.scans, o.model, geometry, result.stats, std::ref(progress));
+    result.stats =
+        insert_by_bands(bands, std::ref(progress),
+                        [&](core::RowBand band, core::InsertionStats& s, const core::Progress& p) {
+                          core::insert_scans(result.map, log.scans, o.model, s, band, p);
+                        });
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -22,6 +22,9 @@ struct MapJobOptions {
   int levels = 16;            // eps from the ISM's Pmax: p_levels = Pmax
   std::optional<double> eps;  // overrides levels
   core::VetoBound veto = core::VetoBound::strongest_claim;
+  // Threads inserting the log, each into its own band of the grid's rows (0: every core); the
+  // same map for any count, bit for bit: every cell takes the same fusions in the same order.
+  int threads = 0;
   double margin = 1.0;                                     // metres of grid around what the log saw
   double max_memory_bytes = default_memory_limit_bytes();  // --max-memory
 };

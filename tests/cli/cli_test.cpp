@@ -501,6 +501,26 @@ TEST_F(Cli, SimulateIsByteIdenticalForTheSameSeed) {
   EXPECT_NE(file_text(dir_ / "a" / "sim.log"), file_text(dir_ / "c" / "sim.log"));
 }
 
+// The map is the same, bit for bit, for every thread count, in both arithmetics (each thread
+// fills its own band of rows: every cell takes the same fusions in the same order).
+TEST_F(Cli, MapIsByteIdenticalForEveryThreadCount) {
+  const fs::path log = dir_ / "sim" / "sim.log";
+  ASSERT_EQ(run("simulate --out " + (dir_ / "sim").string() + " --scans 40 --seed 3").status, 0);
+  for (const char* arith : {"int", "float"}) {
+    std::string first;
+    for (const int threads : {1, 2, 3, 7}) {
+      const fs::path out = dir_ / (std::string(arith) + std::to_string(threads));
+      const CliRun m =
+          run("map --log " + log.string() + " --out " + out.string() + " --cell 0.05 --arith " +
+              arith + " --threads " + std::to_string(threads));
+      ASSERT_EQ(m.status, 0) << m.output;
+      const std::string pgm = file_text(out / "map.pgm");
+      if (first.empty()) first = pgm;
+      EXPECT_EQ(pgm, first) << arith << ", " << threads << " threads";
+    }
+  }
+}
+
 TEST_F(Cli, SimulateOnAMapAlongAReferenceTrajectory) {
   // A 4 m square room map, and a reference log of three poses inside it.
   std::string pgm = "P5\n40 40\n255\n";

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -106,6 +107,49 @@ TEST(ScanInsertion, IntegerScanIsTheQuantizedDoubleScan) {
     EXPECT_EQ(int_stats.inserted, 181u);
     EXPECT_LE(int_stats.cells_updated, float_stats.cells_updated);
   }
+}
+
+// Bands of rows filled apart give the cells of the whole grid's insertion, in both arithmetics,
+// with cells driven to saturation (the order of the adds matters there) and the bands' cell
+// counts adding up to the whole's.
+TEST(ScanInsertion, BandsOfRowsFilledApartGiveTheWholeGrid) {
+  std::mt19937_64 rng(4);
+  std::uniform_int_distribution<int> millimetres(200, 4000);
+  std::uniform_real_distribution<double> offset(-1.0, 1.0);
+  std::vector<Scan> scans;
+  for (int i = 0; i < 80; ++i) {
+    std::vector<double> ranges(181);
+    for (double& r : ranges) r = millimetres(rng) * 0.001;
+    scans.push_back(one_scan(ranges, {offset(rng), offset(rng), 3.0 * offset(rng)}));
+  }
+  const GridGeometry geometry = square_grid(200, 0.05);
+  const std::vector<RowBand> bands{{0, 61}, {62, 62}, {63, 140}, {141, 199}};
+  const GaussianBeamModel model{0.03, 0.0};
+  const SepsCodec codec(8, 0.02);
+  IndexScanInserter<std::int8_t> inserter(model, 0.05, codec);
+  Grid<std::int8_t> whole(geometry, 0), banded(geometry, 0);
+  InsertionStats whole_stats;
+  insert_scans(whole, scans, inserter, whole_stats);
+  std::size_t banded_cells = 0;
+  for (const RowBand& band : bands) {
+    InsertionStats stats;
+    insert_scans(banded, scans, inserter, stats, band);
+    banded_cells += stats.cells_updated;
+  }
+  EXPECT_EQ(banded.cells, whole.cells);
+  EXPECT_EQ(banded_cells, whole_stats.cells_updated);
+  const auto saturated = std::count(whole.cells.begin(), whole.cells.end(), codec.max_index()) +
+                         std::count(whole.cells.begin(), whole.cells.end(), -codec.max_index());
+  EXPECT_GT(saturated, 100) << "no cell saturated: the order of the adds was not tested";
+
+  ProbabilityGrid whole_p(geometry, 0.5), banded_p(geometry, 0.5);
+  InsertionStats whole_p_stats;
+  insert_scans(whole_p, scans, model, whole_p_stats);
+  for (const RowBand& band : bands) {
+    InsertionStats stats;
+    insert_scans(banded_p, scans, model, stats, band);
+  }
+  EXPECT_EQ(banded_p.cells, whole_p.cells);
 }
 
 TEST(ScanInsertion, InvalidReadingsAreSkippedAndCounted) {

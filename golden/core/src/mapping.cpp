@@ -50,11 +50,17 @@ ProbabilityGrid map_probabilities(std::span<const Scan> scans, const GaussianBea
                                   const Progress& progress) {
   check_model(model);
   ProbabilityGrid grid(geometry, 0.5);
+  insert_scans(grid, scans, model, stats, {}, progress);
+  return grid;
+}
+
+void insert_scans(ProbabilityGrid& grid, std::span<const Scan> scans,
+                  const GaussianBeamModel& model, InsertionStats& stats, RowBand rows,
+                  const Progress& progress) {
   for (std::size_t i = 0; i < scans.size(); ++i) {
-    insert_scan(grid, scans[i], model, stats);
+    insert_scan(grid, scans[i], model, stats, rows);
     if (progress) progress(i + 1, scans.size());
   }
-  return grid;
 }
 
 }  // namespace intgrid::core

@@ -23,18 +23,20 @@ std::size_t ism_cells_for_reading(const GaussianBeamModel& model, double z, doub
 }
 
 void insert_scan(ProbabilityGrid& grid, const Scan& scan, const GaussianBeamModel& model,
-                 InsertionStats& stats) {
+                 InsertionStats& stats, RowBand rows) {
   const double cell = grid.geometry.resolution;
   const Pose2 pose = scan.sensor_pose();
   std::vector<double> ism;
   for_each_valid_beam(scan, stats, [&](double z, Vec2 from, Vec2 to) {
     ism.resize(ism_cells_for_reading(model, z, cell));
     narrow_ism(model, z, cell, ism);
-    for_each_footprint_cell(grid.geometry, {pose.x, pose.y}, from, to, cell, ism.size(),
-                            [&](std::size_t index, std::size_t k) {
-                              grid.cells[index] = fuse_probabilities(grid.cells[index], ism[k - 1]);
-                              ++stats.cells_updated;
-                            });
+    for_each_footprint_cell(
+        grid.geometry, {pose.x, pose.y}, from, to, cell, ism.size(),
+        [&](std::size_t index, std::size_t k) {
+          grid.cells[index] = fuse_probabilities(grid.cells[index], ism[k - 1]);
+          ++stats.cells_updated;
+        },
+        rows);
   });
 }
 
@@ -83,7 +85,8 @@ const std::vector<Index>& IndexScanInserter<Index>::beam_indices(double z) {
 }
 
 template <class Index>
-void IndexScanInserter<Index>::insert(Grid<Index>& grid, const Scan& scan, InsertionStats& stats) {
+void IndexScanInserter<Index>::insert(Grid<Index>& grid, const Scan& scan, InsertionStats& stats,
+                                      RowBand rows) {
   if (grid.geometry.resolution != cell_)
     fail<std::invalid_argument>("the grid's resolution differs from the inserter's cell size");
   const Pose2 pose = scan.sensor_pose();
@@ -91,11 +94,13 @@ void IndexScanInserter<Index>::insert(Grid<Index>& grid, const Scan& scan, Inser
   for_each_valid_beam(scan, stats, [&](double z, Vec2 from, Vec2 to) {
     const std::vector<Index>& indices = beam_indices(z);
     Index* cells = grid.cells.data();
-    for_each_footprint_cell(grid.geometry, {pose.x, pose.y}, from, to, cell_, indices.size(),
-                            [&](std::size_t index, std::size_t k) {
-                              cells[index] = fuse_indices(cells[index], indices[k - 1], max_index);
-                              ++stats.cells_updated;
-                            });
+    for_each_footprint_cell(
+        grid.geometry, {pose.x, pose.y}, from, to, cell_, indices.size(),
+        [&](std::size_t index, std::size_t k) {
+          cells[index] = fuse_indices(cells[index], indices[k - 1], max_index);
+          ++stats.cells_updated;
+        },
+        rows);
   });
 }
 

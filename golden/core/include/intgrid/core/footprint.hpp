@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "intgrid/core/grid.hpp"
 
@@ -25,7 +26,14 @@ inline Vec2 unit_vector(double angle) {
   return {std::cos(angle), std::sin(angle)};
 }
 
-// Calls visit(cell_index, k) once for every grid cell whose centre c satisfies
+// A band of grid rows, first to last: insertion restricted to it touches its cells only, so the
+// bands of one grid can be filled apart (by threads) and give the cells whole rows would.
+struct RowBand {
+  int first = 0;
+  int last = std::numeric_limits<int>::max();
+};
+
+// Calls visit(cell_index, k) once for every grid cell of the rows `rows` whose centre c satisfies
 //   cross(from, c - sensor) >= 0 and cross(to, c - sensor) < 0 (the half-open
 //   angular interval [from, to), `to` counter-clockwise of `from` by less than pi),
 //   and 1 <= round(|c - sensor| / cell) = k <= cells.
@@ -44,7 +52,7 @@ inline void clip_to_half_plane(Vec2 d, double vy, double side, double& lo, doubl
 
 template <class Visit>
 void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 to, double cell,
-                             std::size_t cells, Visit&& visit) {
+                             std::size_t cells, Visit&& visit, RowBand rows = {}) {
   const Vec2 mid{from.x + to.x, from.y + to.y};
   const double reach = (static_cast<double>(cells) + 0.5) * cell;
   const double reach_sq = reach * reach;
@@ -54,8 +62,8 @@ void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, V
   const double far = reach / std::sqrt(std::max(0.5 * (1.0 + dot(from, to)), 1e-12));
   const double y_lo = sensor.y + far * std::min({0.0, from.y, to.y});
   const double y_hi = sensor.y + far * std::max({0.0, from.y, to.y});
-  const int row_lo = std::max(0, grid.cell_y(y_lo) - 1);
-  const int row_hi = std::min(grid.height - 1, grid.cell_y(y_hi) + 1);
+  const int row_lo = std::max({0, grid.cell_y(y_lo) - 1, rows.first});
+  const int row_hi = std::min({grid.height - 1, grid.cell_y(y_hi) + 1, rows.last});
   for (int iy = row_lo; iy <= row_hi; ++iy) {
     const double vy = grid.centre_y(iy) - sensor.y;
     if (vy * vy >= reach_sq) continue;

@@ -17,6 +17,21 @@ using Progress = std::function<void(std::size_t, std::size_t)>;
 // Throws std::invalid_argument if no scan has a valid reading.
 GridGeometry geometry_covering(std::span<const Scan> scans, double resolution, double margin);
 
+// Every scan, in the log's order, into the rows `rows` of grid: those rows' cells as the whole
+// grid's insertion gives them, whatever other bands do meanwhile.
+void insert_scans(ProbabilityGrid& grid, std::span<const Scan> scans,
+                  const GaussianBeamModel& model, InsertionStats& stats, RowBand rows = {},
+                  const Progress& progress = {});
+template <class Index>
+void insert_scans(Grid<Index>& grid, std::span<const Scan> scans,
+                  IndexScanInserter<Index>& inserter, InsertionStats& stats, RowBand rows = {},
+                  const Progress& progress = {}) {
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    inserter.insert(grid, scans[i], stats, rows);
+    if (progress) progress(i + 1, scans.size());
+  }
+}
+
 // The whole log in double precision (Bayesian fusion), every cell starting at 1/2.
 ProbabilityGrid map_probabilities(std::span<const Scan> scans, const GaussianBeamModel& model,
                                   const GridGeometry& geometry, InsertionStats& stats,
@@ -28,10 +43,7 @@ Grid<Index> map_indices(std::span<const Scan> scans, IndexScanInserter<Index>& i
                         const GridGeometry& geometry, InsertionStats& stats,
                         const Progress& progress = {}) {
   Grid<Index> grid(geometry, Index{0});
-  for (std::size_t i = 0; i < scans.size(); ++i) {
-    inserter.insert(grid, scans[i], stats);
-    if (progress) progress(i + 1, scans.size());
-  }
+  insert_scans(grid, scans, inserter, stats, {}, progress);
   return grid;
 }
 

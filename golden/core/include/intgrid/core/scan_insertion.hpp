@@ -78,9 +78,10 @@ void for_each_valid_beam(const Scan& scan, InsertionStats& stats, Beam&& beam) {
   }
 }
 
-// Double-precision insertion: the exact ISM of each reading, fused by Bayes' rule.
+// Double-precision insertion: the exact ISM of each reading, fused by Bayes' rule, into the
+// cells of the rows `rows`.
 void insert_scan(ProbabilityGrid& grid, const Scan& scan, const GaussianBeamModel& model,
-                 InsertionStats& stats);
+                 InsertionStats& stats, RowBand rows = {});
 
 // How far one reading may push a cell toward empty. The exact ISM calls the
 // cells before z empty with near certainty, so one grazing or misaligned beam
@@ -98,8 +99,8 @@ class IndexScanInserter {
   IndexScanInserter(const GaussianBeamModel& model, double cell, const SepsCodec& codec,
                     VetoBound veto = VetoBound::none, double z_step = 0.001);
 
-  // Requires grid resolution == cell.
-  void insert(Grid<Index>& grid, const Scan& scan, InsertionStats& stats);
+  // Into the cells of the rows `rows`. Requires grid resolution == cell.
+  void insert(Grid<Index>& grid, const Scan& scan, InsertionStats& stats, RowBand rows = {});
   // The indices of line-of-sight cells 1..n for the reading z (rounded to z_step).
   const std::vector<Index>& beam_indices(double z);
   const SepsCodec& codec() const { return codec_; }
