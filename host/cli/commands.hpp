@@ -23,9 +23,9 @@ void add_slam_command(CLI::App& app);
 void add_globloc_command(CLI::App& app);
 void add_hw_config_command(CLI::App& app);
 // The SLAM settings as options (--cell, --lambda, --xi, ...), shared by slam and the figures.
-void add_slam_options(CLI::App& cmd, slam::SlamConfig& config);
+void add_slam_options(CLI::App& cmd, slam::GridSlamConfig& config);
 // Throws OptionError naming the flag for a SLAM setting the golden check refuses.
-void check_slam_options(const slam::SlamConfig& config);
+void check_slam_options(const slam::GridSlamConfig& config);
 // Global localization's settings (--pose-cell, --headings, --sigma, --max-range, --levels,
 // --veto-levels) and --method, shared by globloc and the figures.
 void add_global_loc_options(CLI::App& cmd, localization::GlobalLocConfig& config);

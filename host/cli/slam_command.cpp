@@ -34,8 +34,8 @@ const FieldFlags& slam_flags() {
   return flags;
 }
 
-void check_slam_options(const slam::SlamConfig& c) {
-  naming_flags(slam_flags(), [&] { slam::check_slam_config(c); });
+void check_slam_options(const slam::GridSlamConfig& c) {
+  naming_flags(slam_flags(), [&] { slam::check_grid_slam_config(c); });
 }
 
 const FieldFlags& submap_slam_flags() {
@@ -85,7 +85,7 @@ void check_submap_slam_options(const slam::SubmapSlamConfig& c) {
   naming_flags(submap_slam_flags(), [&] { slam::check_submap_slam_config(c); });
 }
 
-void add_slam_options(CLI::App& cmd, slam::SlamConfig& c) {
+void add_slam_options(CLI::App& cmd, slam::GridSlamConfig& c) {
   cmd.add_option("--cell,--res", c.cell, "map cell and pose-grid step (m, whole millimetres)")
       ->check(positive())
       ->capture_default_str();

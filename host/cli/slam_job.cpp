@@ -314,7 +314,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     core::Progress report;
     if (o.progress) report = std::ref(progress);
     if (o.engine == SlamEngine::grid) {
-      r.run = slam::run_slam(log, o.grid_config, o.arithmetic, report);
+      r.run = slam::run_grid_slam(log, o.grid_config, o.arithmetic, report);
     } else {
       slam::SubmapSlamStats stats;
       r.run = slam::run_submap_slam(log, o.submap_config, o.arithmetic, &stats, report);
@@ -362,7 +362,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                       {"peak_pyramid_bytes", s.peak_pyramid_bytes},
                       {"settings", submap_settings_json(o.submap_config, r.run.codec)}});
   } else {
-    const slam::SlamConfig& c = o.grid_config;
+    const slam::GridSlamConfig& c = o.grid_config;
     r.metrics.update({{"skipped_scans", r.run.skipped_scans},
                       {"localizations", r.run.localizations},
                       {"mappings", r.run.mappings},

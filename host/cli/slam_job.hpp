@@ -1,7 +1,8 @@
 // The `slam` job: a log through one of two SLAM engines, the submap SLAM with loop closure
-// (slam::run_submap_slam, the default) or the thesis's event-driven grid SLAM (slam::run_slam),
-// written as a trajectory, a ROS map, a PNG with the trajectory drawn and the run's metrics;
-// scored against a reference log (ATE) and against the Freiburg benchmark's relations.
+// (slam::run_submap_slam, the default) or the thesis's event-driven grid SLAM
+// (slam::run_grid_slam), written as a trajectory, a ROS map, a PNG with the trajectory drawn and
+// the run's metrics; scored against a reference log (ATE) and against the Freiburg benchmark's
+// relations.
 #pragma once
 
 #include <filesystem>
@@ -34,7 +35,7 @@ struct SlamJobOptions {
   core::Arithmetic arithmetic = core::Arithmetic::integer;
   SlamEngine engine = SlamEngine::submaps;
   slam::SubmapSlamConfig submap_config;  // the settings of --engine submaps
-  slam::SlamConfig grid_config;          // the settings of --engine grid
+  slam::GridSlamConfig grid_config;      // the settings of --engine grid
   bool progress = true;
   double max_memory_bytes = default_memory_limit_bytes();  // --max-memory
 };

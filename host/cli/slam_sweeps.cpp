@@ -47,8 +47,8 @@ struct RunSpec {
   Sweep sweep = Sweep::lambda;
   int lambda = 1;
   int xi = 1;
-  int window_cells = slam::SlamConfig{}.window.cells;
-  int window_headings = slam::SlamConfig{}.window.headings;
+  int window_cells = slam::GridSlamConfig{}.window.cells;
+  int window_headings = slam::GridSlamConfig{}.window.headings;
   std::size_t scans = 0;  // the first scans of the log
   core::Arithmetic arithmetic = core::Arithmetic::integer;
 
@@ -122,9 +122,9 @@ core::ProbabilityGrid on_grid(const core::ProbabilityGrid& built, const core::Gr
   return out;
 }
 
-RunResult run_one(const World& world, const slam::SlamConfig& base, const RunSpec& spec,
+RunResult run_one(const World& world, const slam::GridSlamConfig& base, const RunSpec& spec,
                   const core::Progress& progress) {
-  slam::SlamConfig config = base;
+  slam::GridSlamConfig config = base;
   config.schedule.lambda = spec.lambda;
   config.schedule.xi = spec.xi;
   config.window.cells = spec.window_cells;
@@ -137,7 +137,7 @@ RunResult run_one(const World& world, const slam::SlamConfig& base, const RunSpe
   const auto start = std::chrono::steady_clock::now();
   slam::SlamRun run;
   try {
-    run = slam::run_slam(log, config, spec.arithmetic, progress);
+    run = slam::run_grid_slam(log, config, spec.arithmetic, progress);
   } catch (const std::runtime_error& e) {
     // A run that loses the robot (the pose window at the map's edge, Pi all zero) is a result of
     // the sweep, not the end of it: its row holds NaN.
@@ -162,7 +162,7 @@ RunResult run_one(const World& world, const slam::SlamConfig& base, const RunSpe
 }
 
 struct Plan {
-  slam::SlamConfig base;  // lambda: the xi sweep's; xi: the lambda sweep's; the window: both's
+  slam::GridSlamConfig base;  // lambda: the xi sweep's; xi: the lambda sweep's; the window: both's
   std::vector<int> lambdas, xis, windows;
   std::size_t scans = 0, depth_scans = 0;
 
@@ -198,7 +198,7 @@ std::vector<RunSpec> make_specs(const Plan& p) {
       specs.push_back(s);
     }
   };
-  const slam::SlamConfig& b = p.base;
+  const slam::GridSlamConfig& b = p.base;
   for (const int lambda : p.lambdas)
     both({Sweep::lambda, lambda, b.schedule.xi, b.window.cells, b.window.headings, p.scans});
   for (const int xi : p.xis)
@@ -309,7 +309,7 @@ std::vector<core::Pose2> poses_of(const core::Log& log) {
 }
 
 void write_world_png(const std::filesystem::path& file, const World& world, const RunResult& run,
-                     const slam::SlamConfig& config, std::uint64_t seed) {
+                     const slam::GridSlamConfig& config, std::uint64_t seed) {
   const core::ProbabilityGrid& g = world.sim.world;
   io::RgbImage image =
       io::render_probability_grid(g, io::ProbabilityScale::grey, kWorldPixelsPerCell);
@@ -498,8 +498,8 @@ void print_table(const char* title, const char* variable, const std::vector<Poin
 
 }  // namespace
 
-slam::SlamConfig default_sweep_config() {
-  slam::SlamConfig c;
+slam::GridSlamConfig default_sweep_config() {
+  slam::GridSlamConfig c;
   c.cell = 0.1;
   c.headings = 256;
   c.window.headings = 21;  // +-14.8 degrees
@@ -525,7 +525,7 @@ void run_slam_sweeps(const SlamSweepOptions& o) {
   // configuration check cannot see, the map's size, it finds before anything is written.
   for (const core::Arithmetic a : {core::Arithmetic::integer, core::Arithmetic::floating}) {
     try {
-      slam::run_slam(first_scans(world.sim.log, 5), plan.base, a);
+      slam::run_grid_slam(first_scans(world.sim.log, 5), plan.base, a);
     } catch (const std::invalid_argument& e) {
       bad_option("--cell", "a map of " + option_number(plan.base.cell) +
                                " m cells over the simulated floor: " + e.what());
@@ -568,7 +568,7 @@ void run_slam_sweeps(const SlamSweepOptions& o) {
                   100 * plan.base.cell, static_cast<unsigned long long>(o.seed));
   const bool plotted = write_plots(o, lambda, xi, depth, title);
 
-  const slam::SlamConfig& b = plan.base;
+  const slam::GridSlamConfig& b = plan.base;
   std::printf(
       "simulated floor 20 x 15 m, 10 cm cells, seed %llu: %zu scans along the corridor loop at "
       "%g m/s; odometry ATE RMSE %.2f cm (max %.2f cm)\n",

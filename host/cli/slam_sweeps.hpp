@@ -19,10 +19,10 @@ inline constexpr std::size_t kSlamSweepQuickScans = 24;  // --quick
 inline constexpr std::size_t kSlamSweepDepthScans =
     390;  // scans of each pose-grid size run: one lap
 
-// The SLAM settings of the sweeps: SlamConfig's with 10 cm cells and 256 headings a turn, a
+// The SLAM settings of the sweeps: GridSlamConfig's with 10 cm cells and 256 headings a turn, a
 // heading step of 1.4 degrees that moves a point 4 m away by one cell, the thesis's unpruned
 // pose grid and tempering 3.
-slam::SlamConfig default_sweep_config();
+slam::GridSlamConfig default_sweep_config();
 
 struct SlamSweepOptions {
   std::filesystem::path out;
@@ -32,7 +32,7 @@ struct SlamSweepOptions {
   std::string gnuplot = "gnuplot";
   // Every run's settings but lambda, xi and the window, which the sweeps vary (lambda is the xi
   // sweep's, xi the lambda sweep's, the window both's).
-  slam::SlamConfig config = default_sweep_config();
+  slam::GridSlamConfig config = default_sweep_config();
 };
 
 // Runs the sweeps and writes DIR/slam_lambda.csv, slam_xi.csv, slam_depth.csv, slam_world.png,

@@ -1006,83 +1006,85 @@ py::tuple grid_tuple(const core::ProbabilityGrid& grid) {
 }
 
 void bind_slam(py::module_& m) {
-  using slam::SlamConfig;
-  py::class_<SlamConfig> config(m, "SlamConfig",
-                                "Options of a SLAM run, nested by concern (the `slam` defaults). "
-                                "SlamConfig(cell=0.1, ...) sets top-level fields; nested ones are "
-                                "set in place: config.beam.sigma = 0.03.");
-  def_fields_init<SlamConfig>(config);
+  using slam::GridSlamConfig;
+  py::class_<GridSlamConfig> config(
+      m, "GridSlamConfig",
+      "Options of a SLAM run, nested by concern (the `slam` defaults). "
+      "GridSlamConfig(cell=0.1, ...) sets top-level fields; nested ones are "
+      "set in place: config.beam.sigma = 0.03.");
+  def_fields_init<GridSlamConfig>(config);
 
-  py::class_<SlamConfig::Schedule> schedule(config, "Schedule",
-                                            "Localization every lambda_-th scan, mapping every "
-                                            "xi-th.");
-  def_fields_init<SlamConfig::Schedule>(schedule);
-  schedule.def_readwrite("lambda_", &SlamConfig::Schedule::lambda, "C++ `lambda`")
-      .def_readwrite("xi", &SlamConfig::Schedule::xi);
+  py::class_<GridSlamConfig::Schedule> schedule(config, "Schedule",
+                                                "Localization every lambda_-th scan, mapping every "
+                                                "xi-th.");
+  def_fields_init<GridSlamConfig::Schedule>(schedule);
+  schedule.def_readwrite("lambda_", &GridSlamConfig::Schedule::lambda, "C++ `lambda`")
+      .def_readwrite("xi", &GridSlamConfig::Schedule::xi);
 
-  py::class_<SlamConfig::BeamModel> beam(config, "BeamModel",
-                                         "The localization event's beam model.");
-  def_fields_init<SlamConfig::BeamModel>(beam);
-  beam.def_readwrite("sigma", &SlamConfig::BeamModel::sigma, "range noise (m)")
-      .def_readwrite("likelihood_floor", &SlamConfig::BeamModel::likelihood_floor)
-      .def_readwrite("beams", &SlamConfig::BeamModel::beams)
-      .def_readwrite("tempering", &SlamConfig::BeamModel::tempering)
-      .def_readwrite("max_range", &SlamConfig::BeamModel::max_range, "m");
+  py::class_<GridSlamConfig::BeamModel> beam(config, "BeamModel",
+                                             "The localization event's beam model.");
+  def_fields_init<GridSlamConfig::BeamModel>(beam);
+  beam.def_readwrite("sigma", &GridSlamConfig::BeamModel::sigma, "range noise (m)")
+      .def_readwrite("likelihood_floor", &GridSlamConfig::BeamModel::likelihood_floor)
+      .def_readwrite("beams", &GridSlamConfig::BeamModel::beams)
+      .def_readwrite("tempering", &GridSlamConfig::BeamModel::tempering)
+      .def_readwrite("max_range", &GridSlamConfig::BeamModel::max_range, "m");
 
-  py::class_<SlamConfig::MotionModel> motion(config, "MotionModel",
-                                             "sigma_xy = xy0 + xy_per_m |t| + xy_per_rad |r|, "
-                                             "sigma_theta alike.");
-  def_fields_init<SlamConfig::MotionModel>(motion);
-  motion.def_readwrite("xy0", &SlamConfig::MotionModel::xy0)
-      .def_readwrite("xy_per_m", &SlamConfig::MotionModel::xy_per_m)
-      .def_readwrite("xy_per_rad", &SlamConfig::MotionModel::xy_per_rad)
-      .def_readwrite("theta0", &SlamConfig::MotionModel::theta0)
-      .def_readwrite("theta_per_m", &SlamConfig::MotionModel::theta_per_m)
-      .def_readwrite("theta_per_rad", &SlamConfig::MotionModel::theta_per_rad);
+  py::class_<GridSlamConfig::MotionModel> motion(config, "MotionModel",
+                                                 "sigma_xy = xy0 + xy_per_m |t| + xy_per_rad |r|, "
+                                                 "sigma_theta alike.");
+  def_fields_init<GridSlamConfig::MotionModel>(motion);
+  motion.def_readwrite("xy0", &GridSlamConfig::MotionModel::xy0)
+      .def_readwrite("xy_per_m", &GridSlamConfig::MotionModel::xy_per_m)
+      .def_readwrite("xy_per_rad", &GridSlamConfig::MotionModel::xy_per_rad)
+      .def_readwrite("theta0", &GridSlamConfig::MotionModel::theta0)
+      .def_readwrite("theta_per_m", &GridSlamConfig::MotionModel::theta_per_m)
+      .def_readwrite("theta_per_rad", &GridSlamConfig::MotionModel::theta_per_rad);
 
-  py::class_<SlamConfig::PoseWindow> window(config, "PoseWindow",
-                                            "The pose grid's window of hypotheses.");
-  def_fields_init<SlamConfig::PoseWindow>(window);
-  window.def_readwrite("cells", &SlamConfig::PoseWindow::cells, "per side in x and y (odd)")
-      .def_readwrite("headings", &SlamConfig::PoseWindow::headings, "heading bins (odd)")
-      .def_readwrite("pose_cutoff", &SlamConfig::PoseWindow::pose_cutoff)
-      .def_readwrite("pose_prune", &SlamConfig::PoseWindow::pose_prune);
+  py::class_<GridSlamConfig::PoseWindow> window(config, "PoseWindow",
+                                                "The pose grid's window of hypotheses.");
+  def_fields_init<GridSlamConfig::PoseWindow>(window);
+  window.def_readwrite("cells", &GridSlamConfig::PoseWindow::cells, "per side in x and y (odd)")
+      .def_readwrite("headings", &GridSlamConfig::PoseWindow::headings, "heading bins (odd)")
+      .def_readwrite("pose_cutoff", &GridSlamConfig::PoseWindow::pose_cutoff)
+      .def_readwrite("pose_prune", &GridSlamConfig::PoseWindow::pose_prune);
 
-  py::class_<SlamConfig::Map> map(config, "Map", "The S_eps map M.");
-  def_fields_init<SlamConfig::Map>(map);
-  map.def_readwrite("seps_bits", &SlamConfig::Map::seps_bits)
-      .def_readwrite("seps_levels", &SlamConfig::Map::seps_levels)
-      .def_readwrite("empty_divisor", &SlamConfig::Map::empty_divisor)
-      .def_readwrite("margin", &SlamConfig::Map::margin, "m");
+  py::class_<GridSlamConfig::Map> map(config, "Map", "The S_eps map M.");
+  def_fields_init<GridSlamConfig::Map>(map);
+  map.def_readwrite("seps_bits", &GridSlamConfig::Map::seps_bits)
+      .def_readwrite("seps_levels", &GridSlamConfig::Map::seps_levels)
+      .def_readwrite("empty_divisor", &GridSlamConfig::Map::empty_divisor)
+      .def_readwrite("margin", &GridSlamConfig::Map::margin, "m");
 
-  py::class_<SlamConfig::UGammaOptions> ugamma(config, "UGammaOptions",
-                                               "U_gamma indices of the integer pose grid.");
-  def_fields_init<SlamConfig::UGammaOptions>(ugamma);
-  ugamma.def_readwrite("bits", &SlamConfig::UGammaOptions::bits)
-      .def_readwrite("steps_per_halving", &SlamConfig::UGammaOptions::steps_per_halving);
+  py::class_<GridSlamConfig::UGammaOptions> ugamma(config, "UGammaOptions",
+                                                   "U_gamma indices of the integer pose grid.");
+  def_fields_init<GridSlamConfig::UGammaOptions>(ugamma);
+  ugamma.def_readwrite("bits", &GridSlamConfig::UGammaOptions::bits)
+      .def_readwrite("steps_per_halving", &GridSlamConfig::UGammaOptions::steps_per_halving);
 
-  config.def_readwrite("cell", &SlamConfig::cell, "map cell and pose-grid step (m)")
-      .def_readwrite("headings", &SlamConfig::headings, "heading bins per turn (power of two)")
-      .def_readwrite("schedule", &SlamConfig::schedule)
-      .def_readwrite("beam", &SlamConfig::beam)
-      .def_readwrite("motion", &SlamConfig::motion)
-      .def_readwrite("window", &SlamConfig::window)
-      .def_readwrite("map", &SlamConfig::map)
-      .def_readwrite("ugamma", &SlamConfig::ugamma)
-      .def("check", &slam::check_slam_config, "Raises ValueError naming a bad field.");
+  config.def_readwrite("cell", &GridSlamConfig::cell, "map cell and pose-grid step (m)")
+      .def_readwrite("headings", &GridSlamConfig::headings, "heading bins per turn (power of two)")
+      .def_readwrite("schedule", &GridSlamConfig::schedule)
+      .def_readwrite("beam", &GridSlamConfig::beam)
+      .def_readwrite("motion", &GridSlamConfig::motion)
+      .def_readwrite("window", &GridSlamConfig::window)
+      .def_readwrite("map", &GridSlamConfig::map)
+      .def_readwrite("ugamma", &GridSlamConfig::ugamma)
+      .def("check", &slam::check_grid_slam_config, "Raises ValueError naming a bad field.");
 
   m.def(
       "odometry_reach",
       [](const std::vector<core::Scan>& scans) { return slam::odometry_reach(scans); },
-      "The farthest robot pose of the scans from the first one's (m): the reach_m of run_slam.",
+      "The farthest robot pose of the scans from the first one's (m): the reach_m of "
+      "run_grid_slam.",
       "scans"_a);
 
   using slam::ScanSlam;
   py::class_<ScanSlam>(m, "ScanSlam",
                        "SLAM scan by scan. The map is sized for odometry within reach_m of the "
                        "first scan's robot pose, which is the SLAM frame.")
-      .def(py::init([](const SlamConfig& cfg, const py::object& arithmetic, const core::Scan& first,
-                       double reach_m) {
+      .def(py::init([](const GridSlamConfig& cfg, const py::object& arithmetic,
+                       const core::Scan& first, double reach_m) {
              const core::Arithmetic a = arithmetic_of(arithmetic);
              py::gil_scoped_release release;
              return std::make_unique<ScanSlam>(cfg, a, first, reach_m);
@@ -1134,14 +1136,14 @@ void bind_slam(py::module_& m) {
           "(P(occupied) float64 array, GridGeometry) on an axis-aligned grid of the log's frame.");
 
   m.def(
-      "run_slam",
-      [](const core::Log& log, const SlamConfig& cfg, const py::object& arithmetic) {
+      "run_grid_slam",
+      [](const core::Log& log, const GridSlamConfig& cfg, const py::object& arithmetic) {
         const core::Arithmetic a = arithmetic_of(arithmetic);
         py::gil_scoped_release release;
-        return slam::run_slam(log, cfg, a);
+        return slam::run_grid_slam(log, cfg, a);
       },
       "SLAM over a whole log ('int': U_gamma pose grid, or 'float').", "log"_a,
-      "config"_a = SlamConfig{}, "arithmetic"_a = "int");
+      "config"_a = GridSlamConfig{}, "arithmetic"_a = "int");
 
   py::class_<slam::TrajectoryError>(m, "TrajectoryError")
       .def_readonly("matched", &slam::TrajectoryError::matched)

@@ -1,4 +1,4 @@
-"""SLAM scan by scan from Python against run_slam over a whole log: the bundled real log's first
+"""SLAM scan by scan from Python against run_grid_slam over a whole log: the bundled real log's first
 60 scans (12 m of the loop, 3 s a run; tests/pipeline/slam_data_test.cpp runs all 225)."""
 import math
 
@@ -27,8 +27,8 @@ def prefix_log(loop_log):
 
 @pytest.fixture(scope="module")
 def both_runs(prefix_log):
-    config = intgrid.SlamConfig()
-    run = intgrid.run_slam(prefix_log, config, "int")
+    config = intgrid.GridSlamConfig()
+    run = intgrid.run_grid_slam(prefix_log, config, "int")
     scans = prefix_log.scans
     slam = intgrid.ScanSlam(config, intgrid.Arithmetic.integer, scans[0],
                             intgrid.odometry_reach(scans))
@@ -41,7 +41,7 @@ def both_runs(prefix_log):
     return run, slam, np.array(poses), np.array(sigmas)
 
 
-def test_scan_by_scan_gives_run_slams_trajectory_and_map_bit_for_bit(both_runs):
+def test_scan_by_scan_gives_run_grid_slams_trajectory_and_map_bit_for_bit(both_runs):
     run, slam, poses, sigmas = both_runs
     assert run.scans == slam.scans == SCANS
     np.testing.assert_array_equal(poses, run.trajectory)  # every pose, exactly
@@ -76,7 +76,7 @@ def test_the_run_moved_and_beats_odometry_against_the_reference(both_runs, prefi
 
 
 def test_nested_config_reads_and_writes_and_checks():
-    config = intgrid.SlamConfig(cell=0.05)
+    config = intgrid.GridSlamConfig(cell=0.05)
     assert config.cell == 0.05 and config.headings == 1024
     config.beam.sigma = 0.03
     config.schedule.lambda_ = 2
@@ -86,7 +86,7 @@ def test_nested_config_reads_and_writes_and_checks():
     config.motion.theta0 = 0.004
     assert (config.beam.sigma, config.schedule.lambda_, config.window.cells, config.map.margin,
             config.ugamma.bits, config.motion.theta0) == (0.03, 2, 13, 5.0, 20, 0.004)
-    config.beam = intgrid.SlamConfig.BeamModel(tempering=4)
+    config.beam = intgrid.GridSlamConfig.BeamModel(tempering=4)
     assert config.beam.tempering == 4 and config.beam.sigma == 0.05
     assert "window=" in repr(config)
     config.check()
@@ -94,21 +94,21 @@ def test_nested_config_reads_and_writes_and_checks():
     with pytest.raises(ValueError, match="window.cells"):
         config.check()
     with pytest.raises(TypeError, match="no field 'lamda'"):
-        intgrid.SlamConfig.Schedule(lamda=3)
+        intgrid.GridSlamConfig.Schedule(lamda=3)
 
 
 def test_slam_errors_are_value_errors(loop_log):
     scans = loop_log.scans
-    config = intgrid.SlamConfig()
+    config = intgrid.GridSlamConfig()
     config.window.cells = 12
     with pytest.raises(ValueError, match="window.cells"):
         intgrid.ScanSlam(config, "int", scans[0], 10.0)
     with pytest.raises(ValueError, match="arithmetic must be"):
-        intgrid.ScanSlam(intgrid.SlamConfig(), "fixed", scans[0], 10.0)
-    slam = intgrid.ScanSlam(intgrid.SlamConfig(), "float", scans[0], 10.0)
+        intgrid.ScanSlam(intgrid.GridSlamConfig(), "fixed", scans[0], 10.0)
+    slam = intgrid.ScanSlam(intgrid.GridSlamConfig(), "float", scans[0], 10.0)
     other = copy_scan(scans[1])
     other.ranges = other.ranges[:100]
     with pytest.raises(ValueError, match="beam count"):
         slam.insert(other)
     with pytest.raises(ValueError, match="no scans"):
-        intgrid.run_slam(intgrid.Log())
+        intgrid.run_grid_slam(intgrid.Log())

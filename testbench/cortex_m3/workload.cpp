@@ -71,8 +71,8 @@ QuantizedScan slam_scan(std::size_t i) {
 }
 
 // lambda 1 localizes the second scan; lambda 2 does not.
-SlamConfig small_slam_config(int lambda) {
-  SlamConfig c;
+GridSlamConfig small_slam_config(int lambda) {
+  GridSlamConfig c;
   c.schedule.lambda = lambda;
   c.schedule.xi = 2;  // the second scan is localized, not mapped
   c.window.cells = 5;

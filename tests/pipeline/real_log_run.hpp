@@ -29,7 +29,7 @@ inline Scored run_real_log(core::Arithmetic arithmetic,
   log.scans.resize(std::min(log.scans.size(), scans));
   const std::vector<TimedPose> reference =
       scan_poses(io::read_log(data + "/malaga_telecom_loop_reference.log"));
-  Scored s{run_slam(log, SlamConfig{}, arithmetic), {}, {}};
+  Scored s{run_grid_slam(log, GridSlamConfig{}, arithmetic), {}, {}};
   s.ate = absolute_trajectory_error(s.run.trajectory, reference);
   s.odometry = absolute_trajectory_error(scan_poses(log), reference);
   return s;

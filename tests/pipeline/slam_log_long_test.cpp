@@ -32,9 +32,9 @@ TEST(SlamData, RealLogTrajectoryErrorFloorAndArithmeticsAgree) {
   EXPECT_LE(floating.ate.rmse, 0.20);
   EXPECT_LE(std::abs(integer.ate.rmse - floating.ate.rmse),
             0.1 * std::max(integer.ate.rmse, floating.ate.rmse));
-  // The default tempering's reason (SlamConfig::tempering): the pose grid's spread is no smaller
-  // than the rounding of its 10 cm lattice, cell sqrt(2/12) (measured 43.0 and 42.6 mm).
-  const double lattice_rounding = SlamConfig{}.cell * std::sqrt(2.0 / 12.0);
+  // The default tempering's reason (GridSlamConfig::tempering): the pose grid's spread is no
+  // smaller than the rounding of its 10 cm lattice, cell sqrt(2/12) (measured 43.0 and 42.6 mm).
+  const double lattice_rounding = GridSlamConfig{}.cell * std::sqrt(2.0 / 12.0);
   EXPECT_GE(integer.run.mean_sigma(), lattice_rounding);
   EXPECT_GE(floating.run.mean_sigma(), lattice_rounding);
   // The map: the courtyard's walls are there, and most of what the laser crossed is empty.
@@ -67,9 +67,10 @@ TEST(SlamData, SimulatedCourtyardKeepsTheTrueHeadingWhenOdometryMissesByDegrees)
     const simulation::Simulation run = simulation::simulate(world.grid, sim, seed);
     const std::vector<TimedPose> truth = scan_poses(run.truth);
     EXPECT_GT(absolute_trajectory_error(scan_poses(run.log), truth).rmse, 1.0) << "seed " << seed;
-    const double ate = absolute_trajectory_error(
-                           run_slam(run.log, SlamConfig{}, Arithmetic::integer).trajectory, truth)
-                           .rmse;
+    const double ate =
+        absolute_trajectory_error(
+            run_grid_slam(run.log, GridSlamConfig{}, Arithmetic::integer).trajectory, truth)
+            .rmse;
     EXPECT_LT(ate, 0.35) << "seed " << seed;
     total += ate;
   }

@@ -154,15 +154,15 @@ double wrap(double a) {
   return std::remainder(a, 2.0 * kPi);
 }
 
-SlamConfig small_config() {
-  SlamConfig c;
+GridSlamConfig small_config() {
+  GridSlamConfig c;
   c.beam.max_range = 10.0;
   c.map.margin = 2.0;
   return c;
 }
 
 // Every scan of the log as the per-scan path's input, through the public quantization.
-std::vector<QuantizedScan> quantize(const Log& log, const SlamConfig& config) {
+std::vector<QuantizedScan> quantize(const Log& log, const GridSlamConfig& config) {
   SlamRun counts;
   return quantize_scans(log, config, counts);
 }
@@ -250,7 +250,7 @@ TEST(SlamSetup, SensorGeometryInIntegerUnitsMatchesTheDoubles) {
 TEST(SlamSetup, MapPutsTheSlamOriginCellOnTheOrigin) {
   const World world;
   for (const double cell : {0.1, 0.05, 0.037}) {
-    SlamConfig c = small_config();
+    GridSlamConfig c = small_config();
     c.cell = cell;
     const double reach = 3.3;
     const SlamSetup s = make_slam_setup(c, make_scan(world, {}, {}, 0.0, 90), reach);
@@ -271,7 +271,7 @@ TEST(SlamSetup, MapPutsTheSlamOriginCellOnTheOrigin) {
 TEST(SlamSetup, NarrowIsmTableIsTheScanInsertersBeams) {
   const World world;
   for (const int divisor : {1, 3}) {
-    SlamConfig c = small_config();
+    GridSlamConfig c = small_config();
     c.beam.max_range = 6.0;
     c.map.empty_divisor = divisor;
     const SlamSetup s = make_slam_setup(c, make_scan(world, {}, {}, 0.0, 90), 0.0);
@@ -307,54 +307,55 @@ TEST(SlamSetup, NarrowIsmTableIsTheScanInsertersBeams) {
 }
 
 TEST(SlamSetup, ConfigCheckNamesEachBadField) {
-  EXPECT_NO_THROW(check_slam_config(SlamConfig{}));
+  EXPECT_NO_THROW(check_grid_slam_config(GridSlamConfig{}));
   struct Case {
     const char* field;
-    void (*spoil)(SlamConfig&);
+    void (*spoil)(GridSlamConfig&);
   };
   const Case cases[] = {
-      {"cell", [](SlamConfig& c) { c.cell = 0.1234; }},  // not a whole number of mm
-      {"cell", [](SlamConfig& c) { c.cell = 0.0; }},
-      {"headings", [](SlamConfig& c) { c.headings = 1000; }},
-      {"headings", [](SlamConfig& c) { c.headings = 4; }},
-      {"window.cells", [](SlamConfig& c) { c.window.cells = 10; }},
-      {"window.headings", [](SlamConfig& c) { c.window.headings = 12; }},
+      {"cell", [](GridSlamConfig& c) { c.cell = 0.1234; }},  // not a whole number of mm
+      {"cell", [](GridSlamConfig& c) { c.cell = 0.0; }},
+      {"headings", [](GridSlamConfig& c) { c.headings = 1000; }},
+      {"headings", [](GridSlamConfig& c) { c.headings = 4; }},
+      {"window.cells", [](GridSlamConfig& c) { c.window.cells = 10; }},
+      {"window.headings", [](GridSlamConfig& c) { c.window.headings = 12; }},
       {"window.headings",
-       [](SlamConfig& c) {
+       [](GridSlamConfig& c) {
          c.headings = 8;
          c.window.headings = 9;
        }},
-      {"schedule.lambda", [](SlamConfig& c) { c.schedule.lambda = 0; }},
-      {"schedule.xi", [](SlamConfig& c) { c.schedule.xi = 0; }},
+      {"schedule.lambda", [](GridSlamConfig& c) { c.schedule.lambda = 0; }},
+      {"schedule.xi", [](GridSlamConfig& c) { c.schedule.xi = 0; }},
       {"beam.sigma",
-       [](SlamConfig& c) { c.beam.sigma = std::numeric_limits<double>::quiet_NaN(); }},
-      {"beam.sigma", [](SlamConfig& c) { c.beam.sigma = 0.0005; }},
-      {"beam.likelihood_floor", [](SlamConfig& c) { c.beam.likelihood_floor = 0.0; }},
-      {"beam.beams", [](SlamConfig& c) { c.beam.beams = 0; }},
-      {"beam.tempering", [](SlamConfig& c) { c.beam.tempering = 0; }},
-      {"beam.max_range", [](SlamConfig& c) { c.beam.max_range = -1.0; }},
-      {"window.pose_cutoff", [](SlamConfig& c) { c.window.pose_cutoff = 0.0; }},
-      {"window.pose_prune", [](SlamConfig& c) { c.window.pose_prune = -1e-9; }},
+       [](GridSlamConfig& c) { c.beam.sigma = std::numeric_limits<double>::quiet_NaN(); }},
+      {"beam.sigma", [](GridSlamConfig& c) { c.beam.sigma = 0.0005; }},
+      {"beam.likelihood_floor", [](GridSlamConfig& c) { c.beam.likelihood_floor = 0.0; }},
+      {"beam.beams", [](GridSlamConfig& c) { c.beam.beams = 0; }},
+      {"beam.tempering", [](GridSlamConfig& c) { c.beam.tempering = 0; }},
+      {"beam.max_range", [](GridSlamConfig& c) { c.beam.max_range = -1.0; }},
+      {"window.pose_cutoff", [](GridSlamConfig& c) { c.window.pose_cutoff = 0.0; }},
+      {"window.pose_prune", [](GridSlamConfig& c) { c.window.pose_prune = -1e-9; }},
       {"window.pose_prune",
-       [](SlamConfig& c) { c.window.pose_prune = std::numeric_limits<double>::quiet_NaN(); }},
-      {"window.pose_prune", [](SlamConfig& c) { c.window.pose_prune = c.window.pose_cutoff; }},
-      {"motion", [](SlamConfig& c) { c.motion.xy_per_m = -0.1; }},
-      {"motion", [](SlamConfig& c) { c.motion.theta0 = std::numeric_limits<double>::infinity(); }},
-      {"map.seps_bits", [](SlamConfig& c) { c.map.seps_bits = 9; }},
+       [](GridSlamConfig& c) { c.window.pose_prune = std::numeric_limits<double>::quiet_NaN(); }},
+      {"window.pose_prune", [](GridSlamConfig& c) { c.window.pose_prune = c.window.pose_cutoff; }},
+      {"motion", [](GridSlamConfig& c) { c.motion.xy_per_m = -0.1; }},
+      {"motion",
+       [](GridSlamConfig& c) { c.motion.theta0 = std::numeric_limits<double>::infinity(); }},
+      {"map.seps_bits", [](GridSlamConfig& c) { c.map.seps_bits = 9; }},
       // 128 > the largest index 127. (127 itself is accepted, though the message says "below
       // the largest index".)
-      {"map.seps_levels", [](SlamConfig& c) { c.map.seps_levels = 128; }},
-      {"map.empty_divisor", [](SlamConfig& c) { c.map.empty_divisor = 0; }},
-      {"ugamma.bits", [](SlamConfig& c) { c.ugamma.bits = 32; }},
-      {"ugamma.steps_per_halving", [](SlamConfig& c) { c.ugamma.steps_per_halving = 0; }},
+      {"map.seps_levels", [](GridSlamConfig& c) { c.map.seps_levels = 128; }},
+      {"map.empty_divisor", [](GridSlamConfig& c) { c.map.empty_divisor = 0; }},
+      {"ugamma.bits", [](GridSlamConfig& c) { c.ugamma.bits = 32; }},
+      {"ugamma.steps_per_halving", [](GridSlamConfig& c) { c.ugamma.steps_per_halving = 0; }},
       {"map.margin",
-       [](SlamConfig& c) { c.map.margin = std::numeric_limits<double>::quiet_NaN(); }},
+       [](GridSlamConfig& c) { c.map.margin = std::numeric_limits<double>::quiet_NaN(); }},
   };
   for (const Case& k : cases) {
-    SlamConfig c;
+    GridSlamConfig c;
     k.spoil(c);
     try {
-      check_slam_config(c);
+      check_grid_slam_config(c);
       ADD_FAILURE() << "accepted a bad " << k.field;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(k.field), std::string::npos)
@@ -365,7 +366,7 @@ TEST(SlamSetup, ConfigCheckNamesEachBadField) {
                  std::invalid_argument)
         << k.field;
   }
-  EXPECT_THROW(make_slam_setup(SlamConfig{}, make_scan(World{}, {}, {}, 0.0, 36), -1.0),
+  EXPECT_THROW(make_slam_setup(GridSlamConfig{}, make_scan(World{}, {}, {}, 0.0, 36), -1.0),
                std::invalid_argument);
 }
 
@@ -394,7 +395,7 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
   const World world = room_with_pillar();
   // The robot's world pose; the SLAM frame is this pose, so the room appears rotated in it.
   const Pose2 robot{0.3, -0.4, 0.5};
-  SlamConfig config = small_config();
+  GridSlamConfig config = small_config();
   config.schedule.lambda = 1000;
   config.beam.max_range = 3.2;  // some walls are farther: those readings are dropped
   Log log;
@@ -502,7 +503,7 @@ struct MixtureError {
 template <class Pr>
 MixtureError mixture_map_error(int ugamma_steps_per_halving) {
   const World world = room_with_pillar();
-  SlamConfig config = small_config();
+  GridSlamConfig config = small_config();
   config.ugamma.steps_per_halving = ugamma_steps_per_halving;
   config.motion.xy0 = 0.05;  // half a cell: Pi spreads over the neighbouring cells
   config.motion.theta0 = 0.004;
@@ -542,7 +543,7 @@ MixtureError mixture_map_error(int ugamma_steps_per_halving) {
   if (poses.size() < 9) return r;  // not a real mixture: the caller fails
 
   // Each pose's own ISM image: one pose reached by exact odometry, mapped alone.
-  SlamConfig exact = config;
+  GridSlamConfig exact = config;
   exact.motion.xy0 = exact.motion.xy_per_m = exact.motion.xy_per_rad = 0.0;
   exact.motion.theta0 = exact.motion.theta_per_m = exact.motion.theta_per_rad = 0.0;
   const SlamSetup exact_setup = make_slam_setup(exact, log.scans[0], 1.0);
@@ -625,7 +626,7 @@ TEST(SlamMapping, MixtureOfPosesIsTheWeightedSumOfTheirIsmsInInteger) {
 
 TEST(SlamMapping, ScanWithoutUsableReadingsTouchesNothing) {
   const World world;
-  SlamConfig config = small_config();
+  GridSlamConfig config = small_config();
   config.beam.max_range = 1.0;  // every wall is farther
   Log log;
   log.scans.push_back(make_scan(world, {}, {}, 0.0, 36));
@@ -640,7 +641,7 @@ TEST(SlamMapping, ScanWithoutUsableReadingsTouchesNothing) {
 
 TEST(SlamMapping, ProcessRejectsAScanOfAnotherBeamCount) {
   const World world;
-  const SlamConfig config = small_config();
+  const GridSlamConfig config = small_config();
   const SlamSetup setup = make_slam_setup(config, make_scan(world, {}, {}, 0.0, 36), 0.0);
   GridSlam<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
   QuantizedScan scan;
@@ -657,8 +658,8 @@ struct MotionTrace {
   std::vector<double> mass;
 };
 
-SlamConfig motion_config() {
-  SlamConfig c = small_config();
+GridSlamConfig motion_config() {
+  GridSlamConfig c = small_config();
   c.motion.xy0 = 0.03;  // a kernel of at least 0.3 cells: its sampled mean is its centre
   c.window.headings = 31;
   return c;
@@ -674,7 +675,7 @@ std::vector<Pose2> motion_increments() {
 
 template <class Pr>
 MotionTrace run_motion_only() {
-  const SlamConfig config = motion_config();
+  const GridSlamConfig config = motion_config();
   Log log;
   Pose2 pose{1.0, 2.0, -0.7};  // the first pose, in the log's frame
   const Pose2 first = pose;
@@ -706,7 +707,7 @@ MotionTrace run_motion_only() {
 template <class Pr>
 void expect_mean_follows_odometry(const char* name) {
   const MotionTrace t = run_motion_only<Pr>();
-  const SlamConfig c = motion_config();
+  const GridSlamConfig c = motion_config();
   const double bin = 2.0 * kPi / c.headings;
   double worst_xy = 0.0, worst_theta = 0.0, worst_mass = 0.0;
   for (std::size_t i = 0; i < t.estimates.size(); ++i) {
@@ -777,7 +778,7 @@ TEST(SlamMotion, IntegerAndDoubleMeansAgree) {
 }
 
 TEST(SlamMotion, WindowReachingTheMapEdgeThrows) {
-  SlamConfig config = small_config();
+  GridSlamConfig config = small_config();
   config.beam.max_range = 1.0;
   config.map.margin = 1.0;
   const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), 0.0);
@@ -799,7 +800,7 @@ TEST(SlamMotion, WindowReachingTheMapEdgeThrows) {
 // robot stays within that reach.
 TEST(SlamMotion, RunWithinTheAnnouncedReachFitsTheMapWithoutMargin) {
   for (const double max_range : {1.0, 10.0}) {
-    SlamConfig config = small_config();
+    GridSlamConfig config = small_config();
     config.beam.max_range = max_range;
     config.map.margin = 0.0;
     const double reach = 2.0;
@@ -829,7 +830,7 @@ TEST(SlamMotion, IntegerEstimateOfABroadPoseGridOnALargeWindow) {
     int cells, headings;
   };
   for (const Window w : {Window{161, 1}, Window{61, 61}}) {
-    SlamConfig config = small_config();
+    GridSlamConfig config = small_config();
     config.window.cells = w.cells;
     config.window.headings = w.headings;
     config.motion.xy0 = 5.0;  // one update spreads Pi nearly evenly over the window
@@ -870,13 +871,13 @@ TEST(SlamMotion, IntegerEstimateOfABroadPoseGridOnALargeWindow) {
 // estimate did not move at all, for every displacement below); with 360 beams (1 degree, 5 cm
 // apart at 3 m) the walls and the free space are dense enough to localize against.
 
-SlamConfig localization_config() {
-  SlamConfig c = small_config();
+GridSlamConfig localization_config() {
+  GridSlamConfig c = small_config();
   // Pi spreads over the neighbouring cells and headings on a still update.
   c.motion.xy0 = 0.05;
   c.motion.theta0 = 0.02;
   // One scan of a simulated room, whose readings are independent given the map: weighed as such,
-  // not with the real log's tempering (SlamConfig::tempering).
+  // not with the real log's tempering (GridSlamConfig::tempering).
   c.beam.tempering = 1;
   return c;
 }
@@ -890,7 +891,7 @@ struct Localized {
 // The room mapped from one pose, then read from the pose displaced by `displacement` while the
 // odometry says the robot did not move: the SLAM after those two scans.
 template <class Pr>
-GridSlam<Pr> map_then_localize(const SlamConfig& config, const Pose2& displacement) {
+GridSlam<Pr> map_then_localize(const GridSlamConfig& config, const Pose2& displacement) {
   const World world = room_with_pillar();
   const Pose2 robot{-0.4, 0.3, 0.2};
   const Pose2 truth = compose(robot, displacement);
@@ -921,7 +922,7 @@ Localized localize_once(const Pose2& displacement) {
 
 template <class Pr>
 void expect_localization_moves_toward_the_truth(const char* name) {
-  const SlamConfig config = localization_config();
+  const GridSlamConfig config = localization_config();
   const int n = config.window.cells, nt = config.window.headings;
   const double c = config.cell, bin = 2.0 * kPi / config.headings;
   const double unit = 2.0 * kPi / kAngleUnitsPerTurn;  // radians per angle unit
@@ -983,7 +984,7 @@ TEST(SlamLocalization, EstimateMovesTowardTheTruePoseInInteger) {
 // smallest 16-bit U_gamma index (2^-2048), which a running product of them would reach and keep.
 template <class Pr>
 void expect_joint_likelihood_survives_underflow(const char* name) {
-  const SlamConfig config = small_config();
+  const GridSlamConfig config = small_config();
   const Log log = [] {
     Log l;
     l.scans.push_back(make_scan(room_with_pillar(), {}, {}, 0.0, 90));
@@ -1032,9 +1033,9 @@ TEST(SlamLocalization, JointLikelihoodOfManyBeamsSurvivesUnderflowInInteger) {
 // threshold on every dropped one.
 template <class Pr>
 void expect_localization_prunes_only_negligible_poses(const char* name) {
-  SlamConfig pruned = localization_config();
+  GridSlamConfig pruned = localization_config();
   pruned.window.pose_prune = 1e-6;
-  SlamConfig kept = pruned;
+  GridSlamConfig kept = pruned;
   kept.window.pose_prune = 0.0;
   const Pose2 displacement{0.04, -0.03, 0.0175};
   const GridSlam<Pr> with = map_then_localize<Pr>(pruned, displacement),
@@ -1104,13 +1105,14 @@ const LoopLog& loop_log() {
   return log;
 }
 
-SlamConfig loop_config() {
+GridSlamConfig loop_config() {
   return small_config();
 }
 
 const SlamRun& loop_run(Arithmetic arithmetic) {
-  static const SlamRun integer = run_slam(loop_log().log, loop_config(), Arithmetic::integer);
-  static const SlamRun floating = run_slam(loop_log().log, loop_config(), Arithmetic::floating);
+  static const SlamRun integer = run_grid_slam(loop_log().log, loop_config(), Arithmetic::integer);
+  static const SlamRun floating =
+      run_grid_slam(loop_log().log, loop_config(), Arithmetic::floating);
   return arithmetic == Arithmetic::integer ? integer : floating;
 }
 
@@ -1228,7 +1230,7 @@ TEST(SlamLoop, MapShowsTheWallsAndTheFreeSpaceInTheLogFrame) {
 TEST(SlamLoop, RunsAreBitIdentical) {
   for (const Arithmetic a : {Arithmetic::floating, Arithmetic::integer}) {
     const SlamRun& first = loop_run(a);
-    const SlamRun again = run_slam(loop_log().log, loop_config(), a);
+    const SlamRun again = run_grid_slam(loop_log().log, loop_config(), a);
     ASSERT_EQ(again.trajectory.size(), first.trajectory.size());
     for (std::size_t i = 0; i < first.trajectory.size(); ++i) {
       // Bit-identical doubles: compare with ==, no tolerance.
@@ -1291,12 +1293,12 @@ TEST(SlamLog, CheckRejectsWhatSlamCannotUse) {
   bearing.scans[1].dangle *= 1.001;
   EXPECT_NE(log_error(bearing).find("scan 2"), std::string::npos) << log_error(bearing);
 
-  EXPECT_THROW(run_slam(beams, small_config(), Arithmetic::integer), std::invalid_argument);
+  EXPECT_THROW(run_grid_slam(beams, small_config(), Arithmetic::integer), std::invalid_argument);
 }
 
 TEST(SlamLog, QuantizationCountsAndZeroesUnusableReadings) {
   Log log = small_log(3, 10);
-  SlamConfig config = small_config();
+  GridSlamConfig config = small_config();
   config.beam.max_range = 5.0;
   std::vector<double>& r = log.scans[1].ranges;
   r = {0.0,    std::numeric_limits<double>::quiet_NaN(),
@@ -1325,11 +1327,11 @@ TEST(SlamLog, ScheduleAndScansWithoutReadings) {
   // 360 beams: see SlamLocalization on sparse scans. Steps of half a cell, exact odometry.
   Log log = small_log(10, 360);
   for (double& r : log.scans[4].ranges) r = std::numeric_limits<double>::quiet_NaN();
-  SlamConfig config = small_config();
+  GridSlamConfig config = small_config();
   config.schedule.lambda = 2;
   config.schedule.xi = 3;
   for (const Arithmetic a : {Arithmetic::floating, Arithmetic::integer}) {
-    const SlamRun run = run_slam(log, config, a);
+    const SlamRun run = run_grid_slam(log, config, a);
     EXPECT_EQ(run.scans, 10u);
     EXPECT_EQ(run.trajectory.size(), 10u);
     EXPECT_EQ(run.skipped_scans, 1u);
@@ -1391,7 +1393,7 @@ TEST(TrajectoryError, ScanPosesAreTheLogsRobotPoses) {
 template <class Pr>
 void expect_scan_slam_is_the_per_scan_path(Arithmetic arithmetic) {
   const Log& log = loop_log().log;
-  const SlamConfig config = loop_config();
+  const GridSlamConfig config = loop_config();
   const Pose2 first = log.scans.front().robot;
   const double reach = odometry_reach(log.scans);
   const SlamSetup setup = make_slam_setup(config, log.scans.front(), reach);

@@ -98,7 +98,7 @@ void GridSlam<Pr>::process(const QuantizedScan& scan) {
   if (!usable) {
     ++skipped_;
   } else {
-    const SlamConfig& c = setup_.config;
+    const GridSlamConfig& c = setup_.config;
     if (mappings_ > 0 && scans_ % static_cast<std::size_t>(c.schedule.lambda) == 0) {
       localize(scan);
       ++localizations_;
@@ -226,7 +226,7 @@ void GridSlam<Pr>::motion_update(const QuantizedScan& scan) {
 // then reads the map along them at its own cell.
 template <class Pr>
 void GridSlam<Pr>::localize(const QuantizedScan& scan) {
-  const SlamConfig& config = setup_.config;
+  const GridSlamConfig& config = setup_.config;
   const std::size_t count = scan.range_mm.size();
   const std::size_t stride =
       std::max<std::size_t>(1, (count + static_cast<std::size_t>(config.beam.beams) - 1) /

@@ -46,7 +46,7 @@ void check_one_sensor_geometry(const core::Log& log) {
           "takes each scan's own)");
 }
 
-std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig& config,
+std::vector<QuantizedScan> quantize_scans(const core::Log& log, const GridSlamConfig& config,
                                           SlamRun& run) {
   std::vector<QuantizedScan> out;
   out.reserve(log.scans.size());
@@ -65,9 +65,9 @@ double odometry_reach(std::span<const core::Scan> scans) {
   return reach;
 }
 
-SlamRun run_slam(const core::Log& log, const SlamConfig& config, core::Arithmetic arithmetic,
-                 const core::Progress& progress) {
-  check_slam_config(config);
+SlamRun run_grid_slam(const core::Log& log, const GridSlamConfig& config,
+                      core::Arithmetic arithmetic, const core::Progress& progress) {
+  check_grid_slam_config(config);
   check_slam_log(log);
   check_one_sensor_geometry(log);
   ScanSlam slam(config, arithmetic, log.scans.front(), odometry_reach(log.scans));

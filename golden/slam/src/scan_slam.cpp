@@ -84,8 +84,8 @@ GridSlam<Pr> make_engine(const SlamSetup& setup) {
 
 }  // namespace
 
-ScanSlam::ScanSlam(const SlamConfig& config, core::Arithmetic arithmetic, const core::Scan& first,
-                   double reach_m)
+ScanSlam::ScanSlam(const GridSlamConfig& config, core::Arithmetic arithmetic,
+                   const core::Scan& first, double reach_m)
     : geometry_(first), frame_(first.robot), previous_robot_(first.robot) {
   const SlamSetup setup = make_slam_setup(config, first, reach_m);
   geometry_.ranges.assign(first.ranges.size(), 0.0);
@@ -104,8 +104,8 @@ void ScanSlam::insert(const core::Scan& scan) {
     core::fail<std::invalid_argument>(scan_label(number, scan.t) + " has another " + differs +
                                       " than the first scan; the grid engine needs one sensor "
                                       "geometry (the submaps engine takes each scan's own)");
-  const SlamConfig& config =
-      engine_->visit([](const auto& s) -> const SlamConfig& { return s.setup().config; });
+  const GridSlamConfig& config =
+      engine_->visit([](const auto& s) -> const GridSlamConfig& { return s.setup().config; });
   const QuantizedScan q = quantize_scan(scan, number > 1 ? &previous_robot_ : nullptr, config,
                                         scan_label(number, scan.t), readings_, unusable_);
   engine_->visit([&](auto& s) { s.process(q); });

@@ -29,7 +29,7 @@ std::int32_t millimetres(double metres) {
 
 }  // namespace
 
-void check_slam_config(const SlamConfig& c) {
+void check_grid_slam_config(const GridSlamConfig& c) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
   require(positive(c.cell) && c.cell >= 0.001 && c.cell <= 10.0, "cell",
@@ -76,8 +76,9 @@ void check_slam_config(const SlamConfig& c) {
           "must be in [0, 1000]");
 }
 
-SlamSetup make_slam_setup(const SlamConfig& config, const core::Scan& geometry, double reach_m) {
-  check_slam_config(config);
+SlamSetup make_slam_setup(const GridSlamConfig& config, const core::Scan& geometry,
+                          double reach_m) {
+  check_grid_slam_config(config);
   if (!std::isfinite(reach_m) || reach_m < 0.0)
     core::fail<std::invalid_argument>("SLAM: bad odometry reach");
   SlamSetup s;

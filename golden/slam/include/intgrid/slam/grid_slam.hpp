@@ -26,7 +26,7 @@ namespace intgrid::slam {
 
 // The options of a run, nested by concern. Defaults: chosen on the bundled real log and the
 // simulated floor (docs/results.md says which data chose which).
-struct SlamConfig {
+struct GridSlamConfig {
   double cell = 0.1;    // map cell and pose-grid step (m), a whole number of millimetres
   int headings = 1024;  // heading bins per turn: a power of two, 8..65536
 
@@ -93,7 +93,7 @@ struct SlamConfig {
 };
 
 // Throws std::invalid_argument naming the offending field by its path (`window.cells`).
-void check_slam_config(const SlamConfig& config);
+void check_grid_slam_config(const GridSlamConfig& config);
 
 // The scan geometry, fixed for a run, in integer units.
 struct SlamSensor {
@@ -131,7 +131,7 @@ struct SlamPose {
 
 // Everything the per-scan path needs that takes floating point to build.
 struct SlamSetup {
-  SlamConfig config;
+  GridSlamConfig config;
   core::SepsCodec codec{8, 0.1};  // the map's
   SlamSensor sensor;
   core::GridGeometry map_geometry;  // the SLAM frame's cell (0, 0) is centred on its origin pose
@@ -154,7 +154,7 @@ struct SlamSetup {
 
 // Builds the setup of a run over scans with this geometry whose odometry stays within
 // `reach_m` metres of the first pose. Throws std::invalid_argument for a bad configuration.
-SlamSetup make_slam_setup(const SlamConfig& config, const core::Scan& geometry, double reach_m);
+SlamSetup make_slam_setup(const GridSlamConfig& config, const core::Scan& geometry, double reach_m);
 
 // The conversions of one pose-grid probability type, built once by the setup.
 template <class Probabilities>

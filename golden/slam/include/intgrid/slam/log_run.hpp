@@ -37,7 +37,7 @@ struct SlamRun {
 
 // The per-scan path's inputs of every scan of the log: ranges in millimetres, odometry
 // increments from the previous scan's robot pose. Counts readings into run.
-std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig& config,
+std::vector<QuantizedScan> quantize_scans(const core::Log& log, const GridSlamConfig& config,
                                           SlamRun& run);
 
 // Throws std::invalid_argument with a clear message for a log SLAM cannot use: no scans, no
@@ -45,17 +45,17 @@ std::vector<QuantizedScan> quantize_scans(const core::Log& log, const SlamConfig
 void check_slam_log(const core::Log& log);
 
 // Throws std::invalid_argument naming the first scan whose geometry (beam count, bearings, range
-// limit or sensor mount) differs from the first scan's: the grid engine (run_slam, ScanSlam)
+// limit or sensor mount) differs from the first scan's: the grid engine (run_grid_slam, ScanSlam)
 // sets its pose grid up for one geometry. SubmapSlam takes each scan's own.
 void check_one_sensor_geometry(const core::Log& log);
 
 // The farthest any scan's robot pose lies from the first scan's (m), 0 without scans: the reach
-// run_slam sizes its map for (ScanSlam's reach_m).
+// run_grid_slam sizes its map for (ScanSlam's reach_m).
 double odometry_reach(std::span<const core::Scan> scans);
 
 // Runs the whole log. progress(done, total) after each scan.
-SlamRun run_slam(const core::Log& log, const SlamConfig& config, core::Arithmetic arithmetic,
-                 const core::Progress& progress = {});
+SlamRun run_grid_slam(const core::Log& log, const GridSlamConfig& config,
+                      core::Arithmetic arithmetic, const core::Progress& progress = {});
 
 // The map's probabilities on an axis-aligned grid of the log's frame (nearest cell): the part any
 // scan reached and 10 cells around it. `frame` is the SLAM frame in the log's frame.

@@ -1,7 +1,7 @@
 // SLAM scan by scan, in SI units: the online form of the event-driven grid SLAM. Each scan comes
 // as a core::Scan (ranges in metres, the robot's odometry pose); the integer inputs of the
 // per-scan path (millimetres, angle units, odometry increments) are made here and nowhere else.
-// run_slam (log_run.hpp) is this, over a whole log.
+// run_grid_slam (log_run.hpp) is this, over a whole log.
 #pragma once
 
 #include <cstddef>
@@ -32,7 +32,7 @@ QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_
                             double max_range, const std::string& name, std::size_t& readings,
                             std::size_t& unusable);
 inline QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_robot,
-                                   const SlamConfig& config, const std::string& name,
+                                   const GridSlamConfig& config, const std::string& name,
                                    std::size_t& readings, std::size_t& unusable) {
   return quantize_scan(scan, previous_robot, config.beam.max_range, name, readings, unusable);
 }
@@ -42,7 +42,7 @@ class ScanSlam {
   // A run whose sensor geometry (beam count, bearings, max range, mount) is `first`'s and whose
   // odometry stays within reach_m metres of first.robot (the map is sized for it). The SLAM frame
   // is first.robot. Throws std::invalid_argument for a bad configuration (naming the field).
-  ScanSlam(const SlamConfig& config, core::Arithmetic arithmetic, const core::Scan& first,
+  ScanSlam(const GridSlamConfig& config, core::Arithmetic arithmetic, const core::Scan& first,
            double reach_m);
   ~ScanSlam();
   ScanSlam(ScanSlam&&) noexcept;
