@@ -8,7 +8,7 @@
 #include "cli/options.hpp"
 #include "intgrid/core/sectoral_ism.hpp"
 #include "intgrid/localization/global_localization.hpp"
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 
 namespace intgrid::cli {
 

@@ -22,7 +22,7 @@
 #include "intgrid/io/map_io.hpp"
 #include "intgrid/io/relations_io.hpp"
 #include "intgrid/io/text_io.hpp"
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 
 namespace intgrid::cli {
 namespace {

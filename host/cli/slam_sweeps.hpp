@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <string>
 
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 
 namespace intgrid::cli {
 

@@ -36,8 +36,8 @@
 #include "intgrid/io/map_io.hpp"
 #include "intgrid/localization/global_localization.hpp"
 #include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/log_run.hpp"
-#include "intgrid/slam/scan_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 
 namespace py = pybind11;
@@ -1079,36 +1079,36 @@ void bind_slam(py::module_& m) {
       "run_grid_slam.",
       "scans"_a);
 
-  using slam::ScanSlam;
-  py::class_<ScanSlam>(m, "ScanSlam",
+  using slam::GridSlam;
+  py::class_<GridSlam>(m, "GridSlam",
                        "SLAM scan by scan. The map is sized for odometry within reach_m of the "
                        "first scan's robot pose, which is the SLAM frame.")
       .def(py::init([](const GridSlamConfig& cfg, const py::object& arithmetic,
                        const core::Scan& first, double reach_m) {
              const core::Arithmetic a = arithmetic_of(arithmetic);
              py::gil_scoped_release release;
-             return std::make_unique<ScanSlam>(cfg, a, first, reach_m);
+             return std::make_unique<GridSlam>(cfg, a, first, reach_m);
            }),
            "config"_a, "arithmetic"_a, "first"_a, "reach_m"_a)
-      .def("insert", &ScanSlam::insert, py::call_guard<py::gil_scoped_release>(),
+      .def("insert", &GridSlam::insert, py::call_guard<py::gil_scoped_release>(),
            "The next scan (the first one included): motion, then localization and mapping.",
            "scan"_a)
-      .def("pose", &ScanSlam::pose, "The estimate (mean of the pose grid) in the log's frame.")
-      .def("sigma", &ScanSlam::sigma, "Its positional standard deviation (m).")
-      .def("frame", &ScanSlam::frame, "The SLAM frame in the log's frame.")
+      .def("pose", &GridSlam::pose, "The estimate (mean of the pose grid) in the log's frame.")
+      .def("sigma", &GridSlam::sigma, "Its positional standard deviation (m).")
+      .def("frame", &GridSlam::frame, "The SLAM frame in the log's frame.")
       .def(
-          "map", [](const ScanSlam& s) { return grid_tuple(s.map()); },
+          "map", [](const GridSlam& s) { return grid_tuple(s.map()); },
           "(S_eps int8 array (height, width), row 0 = bottom; GridGeometry), in the SLAM frame.")
-      .def("codec", &ScanSlam::codec, "The map's SepsCodec.")
+      .def("codec", &GridSlam::codec, "The map's SepsCodec.")
       .def(
-          "map_probabilities", [](const ScanSlam& s) { return grid_tuple(s.map_probabilities()); },
+          "map_probabilities", [](const GridSlam& s) { return grid_tuple(s.map_probabilities()); },
           "(P(occupied) float64 array, GridGeometry) on an axis-aligned grid of the log's frame.")
-      .def_property_readonly("scans", &ScanSlam::scans)
-      .def_property_readonly("localizations", &ScanSlam::localizations)
-      .def_property_readonly("mappings", &ScanSlam::mappings)
-      .def_property_readonly("skipped_scans", &ScanSlam::skipped_scans)
-      .def_property_readonly("readings", &ScanSlam::readings)
-      .def_property_readonly("unusable_readings", &ScanSlam::unusable_readings);
+      .def_property_readonly("scans", &GridSlam::scans)
+      .def_property_readonly("localizations", &GridSlam::localizations)
+      .def_property_readonly("mappings", &GridSlam::mappings)
+      .def_property_readonly("skipped_scans", &GridSlam::skipped_scans)
+      .def_property_readonly("readings", &GridSlam::readings)
+      .def_property_readonly("unusable_readings", &GridSlam::unusable_readings);
 
   using slam::SlamRun;
   py::class_<SlamRun>(m, "SlamRun", "A SLAM run over a whole log.")

@@ -9,7 +9,7 @@ import intgrid
 
 
 def copy_scan(scan):
-    """The scan rebuilt field by field in Python, so that ScanSlam sees what Python hands it."""
+    """The scan rebuilt field by field in Python, so that GridSlam sees what Python hands it."""
     return intgrid.Scan(t=scan.t, robot=intgrid.Pose2(*scan.robot.as_tuple()),
                         sensor_mount=intgrid.Pose2(*scan.sensor_mount.as_tuple()),
                         angle0=scan.angle0, dangle=scan.dangle, max_range=scan.max_range,
@@ -30,7 +30,7 @@ def both_runs(prefix_log):
     config = intgrid.GridSlamConfig()
     run = intgrid.run_grid_slam(prefix_log, config, "int")
     scans = prefix_log.scans
-    slam = intgrid.ScanSlam(config, intgrid.Arithmetic.integer, scans[0],
+    slam = intgrid.GridSlam(config, intgrid.Arithmetic.integer, scans[0],
                             intgrid.odometry_reach(scans))
     poses, sigmas = [], []
     for scan in scans:
@@ -102,10 +102,10 @@ def test_slam_errors_are_value_errors(loop_log):
     config = intgrid.GridSlamConfig()
     config.window.cells = 12
     with pytest.raises(ValueError, match="window.cells"):
-        intgrid.ScanSlam(config, "int", scans[0], 10.0)
+        intgrid.GridSlam(config, "int", scans[0], 10.0)
     with pytest.raises(ValueError, match="arithmetic must be"):
-        intgrid.ScanSlam(intgrid.GridSlamConfig(), "fixed", scans[0], 10.0)
-    slam = intgrid.ScanSlam(intgrid.GridSlamConfig(), "float", scans[0], 10.0)
+        intgrid.GridSlam(intgrid.GridSlamConfig(), "fixed", scans[0], 10.0)
+    slam = intgrid.GridSlam(intgrid.GridSlamConfig(), "float", scans[0], 10.0)
     other = copy_scan(scans[1])
     other.ranges = other.ranges[:100]
     with pytest.raises(ValueError, match="beam count"):

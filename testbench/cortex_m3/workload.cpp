@@ -12,7 +12,7 @@
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/core/seps.hpp"
 #include "intgrid/localization/global_localization.hpp"
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/probabilities.hpp"
 #include "testbench/cortex_m3/workload_parameters.hpp"
 
@@ -167,8 +167,8 @@ struct Workload::State {
   double probability_ray_sum = 0.0;
   // Pose-grid update: the first scan mapped, the second measured, with and without localization.
   SlamSetup motion_setup;
-  GridSlam<IndexProbabilities> index_slam, index_motion;
-  GridSlam<DoubleProbabilities> double_slam, double_motion;
+  GridSlamEngine<IndexProbabilities> index_slam, index_motion;
+  GridSlamEngine<DoubleProbabilities> double_slam, double_motion;
   QuantizedScan second_scan = slam_scan(1);
   // Pose occupancy grid.
   LocalizationMap localization_map;

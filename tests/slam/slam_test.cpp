@@ -36,9 +36,9 @@
 #include "intgrid/core/scan_insertion.hpp"
 #include "intgrid/core/sensor_model.hpp"
 #include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/log_run.hpp"
 #include "intgrid/slam/probabilities.hpp"
-#include "intgrid/slam/scan_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 
 using namespace intgrid::core;
@@ -168,7 +168,7 @@ std::vector<QuantizedScan> quantize(const Log& log, const GridSlamConfig& config
 }
 
 template <class Pr>
-double probability_of(const GridSlam<Pr>& slam, typename Pr::P p) {
+double probability_of(const GridSlamEngine<Pr>& slam, typename Pr::P p) {
   if constexpr (std::is_same_v<Pr, IndexProbabilities>)
     return slam.probabilities().u.to_probability(p);
   else
@@ -176,13 +176,13 @@ double probability_of(const GridSlam<Pr>& slam, typename Pr::P p) {
 }
 
 template <class Pr>
-double mass(const GridSlam<Pr>& slam) {
+double mass(const GridSlamEngine<Pr>& slam) {
   double total = 0.0;
   for (const auto p : slam.pose_grid()) total += probability_of(slam, p);
   return total;
 }
 
-// The roundings on the longest path of GridSlam's pairwise sum of n terms: up to 4 terms are
+// The roundings on the longest path of GridSlamEngine's pairwise sum of n terms: up to 4 terms are
 // added in a chain from 0 (the first addition is exact), more are split in halves.
 int pairwise_depth(std::size_t n) {
   if (n <= 4) return n == 0 ? 0 : static_cast<int>(n) - 1;
@@ -190,7 +190,7 @@ int pairwise_depth(std::size_t n) {
 }
 
 template <class Pr>
-std::size_t mode_of(const GridSlam<Pr>& slam) {
+std::size_t mode_of(const GridSlamEngine<Pr>& slam) {
   const auto& pi = slam.pose_grid();
   std::size_t best = 0;
   for (std::size_t q = 1; q < pi.size(); ++q)
@@ -380,7 +380,7 @@ int cell_of(double v, double cell) {
 
 template <class Pr>
 Grid<std::int8_t> first_scan_map(const SlamSetup& setup, const QuantizedScan& scan) {
-  GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
+  GridSlamEngine<Pr> slam(setup, make_probabilities<Pr>(setup));
   slam.process(scan);
   EXPECT_EQ(slam.mappings(), 1u);
   EXPECT_EQ(slam.localizations(), 0u);
@@ -493,7 +493,8 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
 // The mapping event with a spread Pi: P(o_c) = sum_x w_x P_x(o_c) + (1 - W_c) / 2 over the poses
 // x above the cut-off (weights renormalized), P_x the ISM of the scan seen from x, W_c the
 // weight of the poses whose ISM reaches c. The oracle maps the same scan from each pose alone
-// (a GridSlam driven there by exact odometry, without motion noise) and mixes the indices here.
+// (a GridSlamEngine driven there by exact odometry, without motion noise) and mixes the indices
+// here.
 struct MixtureError {
   std::size_t poses = 0, cells = 0, exact = 0, more_confident = 0;
   int worst = 0;
@@ -513,7 +514,7 @@ MixtureError mixture_map_error(int ugamma_steps_per_halving) {
   std::vector<QuantizedScan> scans = quantize(log, config);
   std::fill(scans[0].range_mm.begin(), scans[0].range_mm.end(), 0);  // no mapping at scan 0
   const SlamSetup setup = make_slam_setup(config, log.scans[0], 1.0);
-  GridSlam<Pr> mixed(setup, make_probabilities<Pr>(setup));
+  GridSlamEngine<Pr> mixed(setup, make_probabilities<Pr>(setup));
   mixed.process(scans[0]);
   mixed.process(scans[1]);  // motion update (spreads Pi), then mapping with that Pi
   EXPECT_EQ(mixed.mappings(), 1u);
@@ -550,8 +551,8 @@ MixtureError mixture_map_error(int ugamma_steps_per_halving) {
   const std::size_t cells = mixed.map().cells.size();
   std::vector<double> occ(cells, 0.0), emp(cells, 0.0), weight(cells, 0.0);
   for (const Weighted& x : poses) {
-    GridSlam<DoubleProbabilities> alone(exact_setup,
-                                        make_probabilities<DoubleProbabilities>(exact_setup));
+    GridSlamEngine<DoubleProbabilities> alone(exact_setup,
+                                              make_probabilities<DoubleProbabilities>(exact_setup));
     QuantizedScan there = scans[1];
     there.odom_dx_mm = static_cast<std::int32_t>(x.pose.x_mm);
     there.odom_dy_mm = static_cast<std::int32_t>(x.pose.y_mm);
@@ -631,7 +632,7 @@ TEST(SlamMapping, ScanWithoutUsableReadingsTouchesNothing) {
   Log log;
   log.scans.push_back(make_scan(world, {}, {}, 0.0, 36));
   const SlamSetup setup = make_slam_setup(config, log.scans[0], 0.0);
-  GridSlam<IndexProbabilities> slam(setup, make_probabilities<IndexProbabilities>(setup));
+  GridSlamEngine<IndexProbabilities> slam(setup, make_probabilities<IndexProbabilities>(setup));
   slam.process(quantize(log, config)[0]);
   EXPECT_EQ(slam.skipped_scans(), 1u);
   EXPECT_EQ(slam.mappings(), 0u);
@@ -643,7 +644,7 @@ TEST(SlamMapping, ProcessRejectsAScanOfAnotherBeamCount) {
   const World world;
   const GridSlamConfig config = small_config();
   const SlamSetup setup = make_slam_setup(config, make_scan(world, {}, {}, 0.0, 36), 0.0);
-  GridSlam<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
+  GridSlamEngine<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
   QuantizedScan scan;
   scan.range_mm.assign(35, 1000);
   EXPECT_THROW(slam.process(scan), std::invalid_argument);
@@ -688,7 +689,7 @@ MotionTrace run_motion_only() {
   }
   const std::vector<QuantizedScan> scans = quantize(log, config);
   const SlamSetup setup = make_slam_setup(config, log.scans[0], 4.0);
-  GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
+  GridSlamEngine<Pr> slam(setup, make_probabilities<Pr>(setup));
   MotionTrace trace;
   for (std::size_t i = 0; i < scans.size(); ++i) {
     slam.process(scans[i]);
@@ -782,7 +783,7 @@ TEST(SlamMotion, WindowReachingTheMapEdgeThrows) {
   config.beam.max_range = 1.0;
   config.map.margin = 1.0;
   const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), 0.0);
-  GridSlam<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
+  GridSlamEngine<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
   QuantizedScan scan;
   scan.range_mm.assign(36, 0);
   ASSERT_NO_THROW(slam.process(scan));
@@ -805,7 +806,7 @@ TEST(SlamMotion, RunWithinTheAnnouncedReachFitsTheMapWithoutMargin) {
     config.map.margin = 0.0;
     const double reach = 2.0;
     const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), reach);
-    GridSlam<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
+    GridSlamEngine<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
     QuantizedScan scan;
     scan.range_mm.assign(36, 0);
     int done = 0;
@@ -838,8 +839,8 @@ TEST(SlamMotion, IntegerEstimateOfABroadPoseGridOnALargeWindow) {
     config.beam.max_range = 1.0;
     config.map.margin = 10.0;
     const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), 0.0);
-    GridSlam<DoubleProbabilities> d(setup, make_probabilities<DoubleProbabilities>(setup));
-    GridSlam<IndexProbabilities> n(setup, make_probabilities<IndexProbabilities>(setup));
+    GridSlamEngine<DoubleProbabilities> d(setup, make_probabilities<DoubleProbabilities>(setup));
+    GridSlamEngine<IndexProbabilities> n(setup, make_probabilities<IndexProbabilities>(setup));
     QuantizedScan scan;
     scan.range_mm.assign(36, 0);
     for (int i = 0; i < 2; ++i) {  // the second scan's motion update
@@ -891,7 +892,7 @@ struct Localized {
 // The room mapped from one pose, then read from the pose displaced by `displacement` while the
 // odometry says the robot did not move: the SLAM after those two scans.
 template <class Pr>
-GridSlam<Pr> map_then_localize(const GridSlamConfig& config, const Pose2& displacement) {
+GridSlamEngine<Pr> map_then_localize(const GridSlamConfig& config, const Pose2& displacement) {
   const World world = room_with_pillar();
   const Pose2 robot{-0.4, 0.3, 0.2};
   const Pose2 truth = compose(robot, displacement);
@@ -903,7 +904,7 @@ GridSlam<Pr> map_then_localize(const GridSlamConfig& config, const Pose2& displa
   EXPECT_EQ(scans[1].odom_dy_mm, 0);
   EXPECT_EQ(scans[1].odom_dtheta, 0);
   const SlamSetup setup = make_slam_setup(config, log.scans[0], 0.0);
-  GridSlam<Pr> slam(setup, make_probabilities<Pr>(setup));
+  GridSlamEngine<Pr> slam(setup, make_probabilities<Pr>(setup));
   slam.process(scans[0]);
   slam.process(scans[1]);
   return slam;
@@ -911,7 +912,7 @@ GridSlam<Pr> map_then_localize(const GridSlamConfig& config, const Pose2& displa
 
 template <class Pr>
 Localized localize_once(const Pose2& displacement) {
-  const GridSlam<Pr> slam = map_then_localize<Pr>(localization_config(), displacement);
+  const GridSlamEngine<Pr> slam = map_then_localize<Pr>(localization_config(), displacement);
   Localized r;
   r.estimate = pose_of(slam.estimate());
   r.mode = slam.pose_of(mode_of(slam));
@@ -1038,8 +1039,8 @@ void expect_localization_prunes_only_negligible_poses(const char* name) {
   GridSlamConfig kept = pruned;
   kept.window.pose_prune = 0.0;
   const Pose2 displacement{0.04, -0.03, 0.0175};
-  const GridSlam<Pr> with = map_then_localize<Pr>(pruned, displacement),
-                     without = map_then_localize<Pr>(kept, displacement);
+  const GridSlamEngine<Pr> with = map_then_localize<Pr>(pruned, displacement),
+                           without = map_then_localize<Pr>(kept, displacement);
   ASSERT_EQ(with.localizations(), 1u);
   std::size_t dropped = 0;
   for (std::size_t q = 0; q < with.pose_grid().size(); ++q) {
@@ -1388,17 +1389,17 @@ TEST(TrajectoryError, ScanPosesAreTheLogsRobotPoses) {
   EXPECT_EQ(e.matched, 3u);
 }
 
-// ScanSlam, scan by scan in SI units, against the per-scan path driven by hand: GridSlam over
+// GridSlam, scan by scan in SI units, against the per-scan path driven by hand: GridSlamEngine over
 // quantize_scans' integer inputs, its estimate composed with the first pose.
 template <class Pr>
-void expect_scan_slam_is_the_per_scan_path(Arithmetic arithmetic) {
+void expect_grid_slam_is_the_per_scan_path(Arithmetic arithmetic) {
   const Log& log = loop_log().log;
   const GridSlamConfig config = loop_config();
   const Pose2 first = log.scans.front().robot;
   const double reach = odometry_reach(log.scans);
   const SlamSetup setup = make_slam_setup(config, log.scans.front(), reach);
-  GridSlam<Pr> by_hand(setup, make_probabilities<Pr>(setup));
-  ScanSlam online(config, arithmetic, log.scans.front(), reach);
+  GridSlamEngine<Pr> by_hand(setup, make_probabilities<Pr>(setup));
+  GridSlam online(config, arithmetic, log.scans.front(), reach);
   const std::vector<QuantizedScan> scans = quantize(log, config);
   for (std::size_t i = 0; i < scans.size(); ++i) {
     by_hand.process(scans[i]);
@@ -1414,23 +1415,23 @@ void expect_scan_slam_is_the_per_scan_path(Arithmetic arithmetic) {
   EXPECT_EQ(online.scans(), log.scans.size());
   EXPECT_EQ(online.localizations(), by_hand.localizations());
   EXPECT_EQ(online.mappings(), by_hand.mappings());
-  // The whole-log run is the same scans through ScanSlam.
+  // The whole-log run is the same scans through GridSlam.
   const SlamRun& run = loop_run(arithmetic);
   EXPECT_EQ(run.trajectory.back().pose.x, online.pose().x);
   EXPECT_EQ(run.map.cells, online.map().cells);
 }
 
-TEST(ScanSlam, IsThePerScanPathInInteger) {
-  expect_scan_slam_is_the_per_scan_path<IndexProbabilities>(Arithmetic::integer);
+TEST(GridSlam, IsThePerScanPathInInteger) {
+  expect_grid_slam_is_the_per_scan_path<IndexProbabilities>(Arithmetic::integer);
 }
 
-TEST(ScanSlam, IsThePerScanPathInDouble) {
-  expect_scan_slam_is_the_per_scan_path<DoubleProbabilities>(Arithmetic::floating);
+TEST(GridSlam, IsThePerScanPathInDouble) {
+  expect_grid_slam_is_the_per_scan_path<DoubleProbabilities>(Arithmetic::floating);
 }
 
-TEST(ScanSlam, RefusesAScanOfAnotherGeometryNamingIt) {
+TEST(GridSlam, RefusesAScanOfAnotherGeometryNamingIt) {
   const Log& log = loop_log().log;
-  ScanSlam slam(loop_config(), Arithmetic::integer, log.scans.front(), 5.0);
+  GridSlam slam(loop_config(), Arithmetic::integer, log.scans.front(), 5.0);
   slam.insert(log.scans[0]);
   Scan other = log.scans[1];
   other.sensor_mount.x += 0.01;

@@ -8,8 +8,8 @@
 
 #include "intgrid/core/failure.hpp"
 #include "intgrid/core/scan_insertion.hpp"
+#include "intgrid/slam/grid_slam.hpp"
 #include "intgrid/slam/probabilities.hpp"
-#include "intgrid/slam/scan_slam.hpp"
 
 namespace intgrid::slam {
 namespace {
@@ -70,7 +70,7 @@ SlamRun run_grid_slam(const core::Log& log, const GridSlamConfig& config,
   check_grid_slam_config(config);
   check_slam_log(log);
   check_one_sensor_geometry(log);
-  ScanSlam slam(config, arithmetic, log.scans.front(), odometry_reach(log.scans));
+  GridSlam slam(config, arithmetic, log.scans.front(), odometry_reach(log.scans));
   SlamRun run;
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
     slam.insert(log.scans[i]);

@@ -1,5 +1,5 @@
 // The set-up of a SLAM run: every table the per-scan path needs that takes floating point to
-// build, and the GridSlam constructor (which sizes the map from it).
+// build, and the GridSlamEngine constructor (which sizes the map from it).
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -8,7 +8,7 @@
 #include "intgrid/core/failure.hpp"
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/core/resolution.hpp"
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/probabilities.hpp"
 
 namespace intgrid::slam {
@@ -97,7 +97,7 @@ SlamSetup make_slam_setup(const GridSlamConfig& config, const core::Scan& geomet
     core::fail<std::invalid_argument>("SLAM: the sensor is mounted more than 100 m from the robot");
 
   // A square map centred on the first pose, cell (half, half) centred on it, that holds every
-  // ray of every window pose (GridSlam::check_window_inside_map) while the odometry stays
+  // ray of every window pose (GridSlamEngine::check_window_inside_map) while the odometry stays
   // within reach_m.
   const double half_m =
       reach_m + config.beam.max_range + 3.0 * config.beam.sigma + 2.0 * mount + config.map.margin;
@@ -176,7 +176,7 @@ IndexProbabilities make_probabilities<IndexProbabilities>(const SlamSetup& setup
 }
 
 template <class Pr>
-GridSlam<Pr>::GridSlam(const SlamSetup& setup, Pr probabilities)
+GridSlamEngine<Pr>::GridSlamEngine(const SlamSetup& setup, Pr probabilities)
     : setup_(setup),
       prob_(std::move(probabilities)),
       map_(setup.map_geometry, std::int8_t{0}),
@@ -213,7 +213,7 @@ GridSlam<Pr>::GridSlam(const SlamSetup& setup, Pr probabilities)
   ray_likelihoods_.reserve(ray_offsets_.capacity());
 }
 
-template GridSlam<DoubleProbabilities>::GridSlam(const SlamSetup&, DoubleProbabilities);
-template GridSlam<IndexProbabilities>::GridSlam(const SlamSetup&, IndexProbabilities);
+template GridSlamEngine<DoubleProbabilities>::GridSlamEngine(const SlamSetup&, DoubleProbabilities);
+template GridSlamEngine<IndexProbabilities>::GridSlamEngine(const SlamSetup&, IndexProbabilities);
 
 }  // namespace intgrid::slam

@@ -15,7 +15,7 @@
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/optimization/pose_graph.hpp"
-#include "intgrid/slam/scan_slam.hpp"
+#include "intgrid/slam/grid_slam.hpp"
 #include "submap_tracking.hpp"
 
 namespace intgrid::slam {

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/local_grid.hpp"
 #include "intgrid/slam/scan_matching.hpp"
 

@@ -11,7 +11,7 @@
 #include "intgrid/core/mapping.hpp"
 #include "intgrid/core/seps.hpp"
 #include "intgrid/core/types.hpp"
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 
 namespace intgrid::slam {
 
@@ -45,12 +45,12 @@ std::vector<QuantizedScan> quantize_scans(const core::Log& log, const GridSlamCo
 void check_slam_log(const core::Log& log);
 
 // Throws std::invalid_argument naming the first scan whose geometry (beam count, bearings, range
-// limit or sensor mount) differs from the first scan's: the grid engine (run_grid_slam, ScanSlam)
+// limit or sensor mount) differs from the first scan's: the grid engine (run_grid_slam, GridSlam)
 // sets its pose grid up for one geometry. SubmapSlam takes each scan's own.
 void check_one_sensor_geometry(const core::Log& log);
 
 // The farthest any scan's robot pose lies from the first scan's (m), 0 without scans: the reach
-// run_grid_slam sizes its map for (ScanSlam's reach_m).
+// run_grid_slam sizes its map for (GridSlam's reach_m).
 double odometry_reach(std::span<const core::Scan> scans);
 
 // Runs the whole log. progress(done, total) after each scan.

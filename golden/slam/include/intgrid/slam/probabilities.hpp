@@ -1,5 +1,5 @@
 // The two arithmetics of the SLAM's probabilities (docs/algorithms.md 6): double precision, and
-// U_gamma indices. Each offers the same operations, so GridSlam is written once; only their
+// U_gamma indices. Each offers the same operations, so GridSlamEngine is written once; only their
 // construction (make_probabilities, setup.cpp) needs floating point in the integer case.
 #pragma once
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "intgrid/core/ray_insertion.hpp"
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/local_grid.hpp"
 
 namespace intgrid::slam {

@@ -1,7 +1,7 @@
 // The integer SLAM's per-scan path. CMake builds this file with -mgeneral-regs-only where the
 // compiler has it, so any floating point on this path is a build error.
-#include "grid_slam_impl.hpp"
+#include "grid_slam_engine_impl.hpp"
 
 namespace intgrid::slam {
-template class GridSlam<IndexProbabilities>;
+template class GridSlamEngine<IndexProbabilities>;
 }  // namespace intgrid::slam

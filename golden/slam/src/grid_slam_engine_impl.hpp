@@ -1,6 +1,6 @@
-// The per-scan path of GridSlam: included only by the files that instantiate it
-// (grid_slam_integer.cpp, grid_slam_double.cpp). Integers only, apart from what the Probabilities
-// type does; the integer instantiation is built without floating-point registers.
+// The per-scan path of GridSlamEngine: included only by the files that instantiate it
+// (grid_slam_engine_integer.cpp, grid_slam_engine_double.cpp). Integers only, apart from what the
+// Probabilities type does; the integer instantiation is built without floating-point registers.
 #pragma once
 
 #include <algorithm>
@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "intgrid/core/failure.hpp"
-#include "intgrid/slam/grid_slam.hpp"
+#include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/probabilities.hpp"
 
 namespace intgrid::slam {
@@ -40,7 +40,7 @@ typename Pr::P sum_pairwise(const Pr& pr, const typename Pr::P* p, std::size_t n
 }  // namespace slam_detail
 
 template <class Pr>
-std::size_t GridSlam<Pr>::pose_index(int i, int j, int k) const {
+std::size_t GridSlamEngine<Pr>::pose_index(int i, int j, int k) const {
   return (static_cast<std::size_t>(k) * static_cast<std::size_t>(n_) +
           static_cast<std::size_t>(j)) *
              static_cast<std::size_t>(n_) +
@@ -48,13 +48,13 @@ std::size_t GridSlam<Pr>::pose_index(int i, int j, int k) const {
 }
 
 template <class Pr>
-bool GridSlam<Pr>::slice_is_empty(int k) const {
+bool GridSlamEngine<Pr>::slice_is_empty(int k) const {
   const auto slice = pi_.begin() + static_cast<std::ptrdiff_t>(pose_index(0, 0, k));
   return std::all_of(slice, slice + n_ * n_, [&](P p) { return prob_.is_zero(p); });
 }
 
 template <class Pr>
-SlamPose GridSlam<Pr>::pose_of(std::size_t q) const {
+SlamPose GridSlamEngine<Pr>::pose_of(std::size_t q) const {
   const std::size_t nn = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
   const auto i = static_cast<std::int64_t>(q % nn % static_cast<std::size_t>(n_));
   const auto j = static_cast<std::int64_t>(q % nn / static_cast<std::size_t>(n_));
@@ -64,12 +64,12 @@ SlamPose GridSlam<Pr>::pose_of(std::size_t q) const {
 }
 
 template <class Pr>
-std::int64_t GridSlam<Pr>::map_index(int cx, int cy) const {
+std::int64_t GridSlamEngine<Pr>::map_index(int cx, int cy) const {
   return std::int64_t{cy + setup_.origin_cell_y} * map_.geometry.width + cx + setup_.origin_cell_x;
 }
 
 template <class Pr>
-void GridSlam<Pr>::check_window_inside_map() const {
+void GridSlamEngine<Pr>::check_window_inside_map() const {
   // Every ray starts within the window plus the sensor mount and ends before max range.
   const std::int64_t mount =
       std::max(std::abs(setup_.sensor.mount_x_mm), std::abs(setup_.sensor.mount_y_mm));
@@ -86,7 +86,7 @@ void GridSlam<Pr>::check_window_inside_map() const {
 }
 
 template <class Pr>
-void GridSlam<Pr>::process(const QuantizedScan& scan) {
+void GridSlamEngine<Pr>::process(const QuantizedScan& scan) {
   if (scan.range_mm.size() != setup_.sensor.bearing.size())
     core::fail<std::invalid_argument>("SLAM: a scan has " + std::to_string(scan.range_mm.size()) +
                                       " ranges, the sensor " +
@@ -113,7 +113,7 @@ void GridSlam<Pr>::process(const QuantizedScan& scan) {
 }
 
 template <class Pr>
-void GridSlam<Pr>::normalize() {
+void GridSlamEngine<Pr>::normalize() {
   const P total = slam_detail::sum_pairwise(prob_, pi_.data(), pi_.size());
   if (prob_.is_zero(total))
     core::fail<std::runtime_error>("SLAM: the pose grid lost all its probability");
@@ -124,7 +124,7 @@ void GridSlam<Pr>::normalize() {
 // applied to its (x, y) slice with a separable Gaussian, then spread over the target headings.
 // The new window is centred on the predicted mean.
 template <class Pr>
-void GridSlam<Pr>::motion_update(const QuantizedScan& scan) {
+void GridSlamEngine<Pr>::motion_update(const QuantizedScan& scan) {
   using slam_detail::floor_div;
   using slam_detail::round_div;
   const std::int64_t dx = scan.odom_dx_mm, dy = scan.odom_dy_mm, dt = scan.odom_dtheta;
@@ -225,7 +225,7 @@ void GridSlam<Pr>::motion_update(const QuantizedScan& scan) {
 // prod_{c' before c} P_M(e_c'). The rays of each heading are walked once per scan; a pose
 // then reads the map along them at its own cell.
 template <class Pr>
-void GridSlam<Pr>::localize(const QuantizedScan& scan) {
+void GridSlamEngine<Pr>::localize(const QuantizedScan& scan) {
   const GridSlamConfig& config = setup_.config;
   const std::size_t count = scan.range_mm.size();
   const std::size_t stride =
@@ -327,7 +327,7 @@ void GridSlam<Pr>::localize(const QuantizedScan& scan) {
 // `a`: for every usable
 // reading, the precomputed narrow ISM laid along its ray; indices of one cell add up.
 template <class Pr>
-void GridSlam<Pr>::add_pose_scan(int cx, int cy, std::int32_t a, const QuantizedScan& scan) {
+void GridSlamEngine<Pr>::add_pose_scan(int cx, int cy, std::int32_t a, const QuantizedScan& scan) {
   const core::IntegerRays rays = this->rays();
   const auto [mx, my] = rays.rotate(a, setup_.sensor.mount_x_mm, setup_.sensor.mount_y_mm);
   const std::int64_t base = map_index(cx, cy), width = map_.geometry.width;
@@ -346,7 +346,7 @@ void GridSlam<Pr>::add_pose_scan(int cx, int cy, std::int32_t a, const Quantized
 // a pose's scan does not reach counting 1/2 for it, fused into M. With one pose the sum is that
 // pose's ISM.
 template <class Pr>
-void GridSlam<Pr>::map_scan(const QuantizedScan& scan) {
+void GridSlamEngine<Pr>::map_scan(const QuantizedScan& scan) {
   std::vector<std::pair<std::size_t, P>> poses;
   std::size_t mode = 0;
   for (std::size_t q = 0; q < pi_.size(); ++q) {
@@ -405,7 +405,7 @@ void GridSlam<Pr>::map_scan(const QuantizedScan& scan) {
 
 // The mean of Pi and its positional standard deviation.
 template <class Pr>
-void GridSlam<Pr>::update_estimate() {
+void GridSlamEngine<Pr>::update_estimate() {
   using W = typename Pr::Weight;
   // Weights relative to the most probable pose, which keeps U_gamma's weights in their table.
   P best = pi_[0];

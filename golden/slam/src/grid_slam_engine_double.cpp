@@ -1,6 +1,6 @@
 // The double-precision SLAM's per-scan path: the same code as the integer one.
-#include "grid_slam_impl.hpp"
+#include "grid_slam_engine_impl.hpp"
 
 namespace intgrid::slam {
-template class GridSlam<DoubleProbabilities>;
+template class GridSlamEngine<DoubleProbabilities>;
 }  // namespace intgrid::slam

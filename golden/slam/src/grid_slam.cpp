@@ -1,4 +1,4 @@
-#include "intgrid/slam/scan_slam.hpp"
+#include "intgrid/slam/grid_slam.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -62,8 +62,8 @@ QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_
   return s;
 }
 
-struct ScanSlam::Engine {
-  std::variant<GridSlam<IndexProbabilities>, GridSlam<DoubleProbabilities>> slam;
+struct GridSlam::Engine {
+  std::variant<GridSlamEngine<IndexProbabilities>, GridSlamEngine<DoubleProbabilities>> slam;
 
   template <class F>
   decltype(auto) visit(F&& f) {
@@ -78,13 +78,13 @@ struct ScanSlam::Engine {
 namespace {
 
 template <class Pr>
-GridSlam<Pr> make_engine(const SlamSetup& setup) {
-  return GridSlam<Pr>(setup, make_probabilities<Pr>(setup));
+GridSlamEngine<Pr> make_engine(const SlamSetup& setup) {
+  return GridSlamEngine<Pr>(setup, make_probabilities<Pr>(setup));
 }
 
 }  // namespace
 
-ScanSlam::ScanSlam(const GridSlamConfig& config, core::Arithmetic arithmetic,
+GridSlam::GridSlam(const GridSlamConfig& config, core::Arithmetic arithmetic,
                    const core::Scan& first, double reach_m)
     : geometry_(first), frame_(first.robot), previous_robot_(first.robot) {
   const SlamSetup setup = make_slam_setup(config, first, reach_m);
@@ -94,11 +94,11 @@ ScanSlam::ScanSlam(const GridSlamConfig& config, core::Arithmetic arithmetic,
                 : std::make_unique<Engine>(Engine{make_engine<DoubleProbabilities>(setup)});
 }
 
-ScanSlam::~ScanSlam() = default;
-ScanSlam::ScanSlam(ScanSlam&&) noexcept = default;
-ScanSlam& ScanSlam::operator=(ScanSlam&&) noexcept = default;
+GridSlam::~GridSlam() = default;
+GridSlam::GridSlam(GridSlam&&) noexcept = default;
+GridSlam& GridSlam::operator=(GridSlam&&) noexcept = default;
 
-void ScanSlam::insert(const core::Scan& scan) {
+void GridSlam::insert(const core::Scan& scan) {
   const std::size_t number = scans() + 1;
   if (const char* differs = geometry_difference(scan, geometry_))
     core::fail<std::invalid_argument>(scan_label(number, scan.t) + " has another " + differs +
@@ -112,7 +112,7 @@ void ScanSlam::insert(const core::Scan& scan) {
   previous_robot_ = scan.robot;
 }
 
-core::Pose2 ScanSlam::pose() const {
+core::Pose2 GridSlam::pose() const {
   const SlamEstimate e = engine_->visit([](const auto& s) { return s.estimate(); });
   const core::Pose2 local{static_cast<double>(e.x_um) * 1e-6, static_cast<double>(e.y_um) * 1e-6,
                           static_cast<double>(e.theta_q8) / 256.0 * kUnitRadians};
@@ -121,33 +121,33 @@ core::Pose2 ScanSlam::pose() const {
   return world;
 }
 
-double ScanSlam::sigma() const {
+double GridSlam::sigma() const {
   return static_cast<double>(engine_->visit([](const auto& s) { return s.estimate(); }).sigma_um) *
          1e-6;
 }
 
-const core::Grid<std::int8_t>& ScanSlam::map() const {
+const core::Grid<std::int8_t>& GridSlam::map() const {
   return engine_->visit([](const auto& s) -> const core::Grid<std::int8_t>& { return s.map(); });
 }
 
-const core::SepsCodec& ScanSlam::codec() const {
+const core::SepsCodec& GridSlam::codec() const {
   return engine_->visit([](const auto& s) -> const core::SepsCodec& { return s.setup().codec; });
 }
 
-core::ProbabilityGrid ScanSlam::map_probabilities() const {
+core::ProbabilityGrid GridSlam::map_probabilities() const {
   return slam_map_probabilities(map(), codec(), frame_);
 }
 
-std::size_t ScanSlam::scans() const {
+std::size_t GridSlam::scans() const {
   return engine_->visit([](const auto& s) { return s.scans(); });
 }
-std::size_t ScanSlam::localizations() const {
+std::size_t GridSlam::localizations() const {
   return engine_->visit([](const auto& s) { return s.localizations(); });
 }
-std::size_t ScanSlam::mappings() const {
+std::size_t GridSlam::mappings() const {
   return engine_->visit([](const auto& s) { return s.mappings(); });
 }
-std::size_t ScanSlam::skipped_scans() const {
+std::size_t GridSlam::skipped_scans() const {
   return engine_->visit([](const auto& s) { return s.skipped_scans(); });
 }
 
