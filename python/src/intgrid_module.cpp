@@ -38,6 +38,7 @@
 #include "intgrid/slam/grid_slam.hpp"
 #include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/log_run.hpp"
+#include "intgrid/slam/submap_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 
 namespace py = pybind11;
@@ -1005,6 +1006,151 @@ py::tuple grid_tuple(const core::ProbabilityGrid& grid) {
   return py::make_tuple(to_numpy(grid), grid.geometry);
 }
 
+// The submaps engine, the `slam` command's default (SubmapSlamConfig's groups as nested classes).
+void bind_submap_slam(py::module_& m) {
+  using slam::SubmapSlamConfig;
+  py::class_<SubmapSlamConfig> config(
+      m, "SubmapSlamConfig",
+      "Options of a run of the submaps SLAM (the `slam` command's default engine), nested by "
+      "concern. SubmapSlamConfig(cell=0.05, ...) sets top-level fields; nested ones are set in "
+      "place: config.loops.min_score = 0.7.");
+  def_fields_init<SubmapSlamConfig>(config);
+
+  py::class_<SubmapSlamConfig::Sensor> sensor(config, "Sensor", "The ISM's beam model.");
+  def_fields_init<SubmapSlamConfig::Sensor>(sensor);
+  sensor.def_readwrite("sigma", &SubmapSlamConfig::Sensor::sigma, "range noise (m)")
+      .def_readwrite("max_range", &SubmapSlamConfig::Sensor::max_range,
+                     "readings at or past it unused (m)");
+
+  py::class_<SubmapSlamConfig::Map> map(config, "Map", "The submaps' S_eps grids.");
+  def_fields_init<SubmapSlamConfig::Map>(map);
+  map.def_readwrite("seps_bits", &SubmapSlamConfig::Map::seps_bits)
+      .def_readwrite("seps_levels", &SubmapSlamConfig::Map::seps_levels)
+      .def_readwrite("empty_divisor", &SubmapSlamConfig::Map::empty_divisor);
+
+  py::class_<SubmapSlamConfig::Submaps> submaps(config, "Submaps", "How submaps grow.");
+  def_fields_init<SubmapSlamConfig::Submaps>(submaps);
+  submaps.def_readwrite("scans", &SubmapSlamConfig::Submaps::scans,
+                        "nodes a submap takes before the next starts");
+
+  py::class_<SubmapSlamConfig::MotionFilter> filter(
+      config, "MotionFilter", "A scan becomes a node once the pose moved this far.");
+  def_fields_init<SubmapSlamConfig::MotionFilter>(filter);
+  filter.def_readwrite("distance", &SubmapSlamConfig::MotionFilter::distance, "m")
+      .def_readwrite("degrees", &SubmapSlamConfig::MotionFilter::degrees)
+      .def_readwrite("seconds", &SubmapSlamConfig::MotionFilter::seconds);
+
+  using Tracking = SubmapSlamConfig::Tracking;
+  py::class_<Tracking> tracking(config, "Tracking", "Scan-to-submap matching of every scan.");
+  def_fields_init<Tracking>(tracking);
+  tracking.def_readwrite("window", &Tracking::window, "m")
+      .def_readwrite("window_degrees", &Tracking::window_degrees)
+      .def_readwrite("wide_below", &Tracking::wide_below)
+      .def_readwrite("wide_window", &Tracking::wide_window, "m")
+      .def_readwrite("wide_degrees", &Tracking::wide_degrees)
+      .def_readwrite("prior_xy", &Tracking::prior_xy, "m")
+      .def_readwrite("prior_xy_per_m", &Tracking::prior_xy_per_m)
+      .def_readwrite("prior_degrees", &Tracking::prior_degrees)
+      .def_readwrite("prior_degrees_per_degree", &Tracking::prior_degrees_per_degree)
+      .def_readwrite("min_hits", &Tracking::min_hits);
+
+  using LoopClosure = SubmapSlamConfig::LoopClosure;
+  py::class_<LoopClosure> loops(config, "LoopClosure",
+                                "Matching of nodes against finished submaps.");
+  def_fields_init<LoopClosure>(loops);
+  loops.def_readwrite("every", &LoopClosure::every)
+      .def_readwrite("max_distance", &LoopClosure::max_distance, "m")
+      .def_readwrite("submaps", &LoopClosure::submaps)
+      .def_readwrite("window", &LoopClosure::window, "m")
+      .def_readwrite("window_degrees", &LoopClosure::window_degrees)
+      .def_readwrite("min_score", &LoopClosure::min_score)
+      .def_readwrite("drift", &LoopClosure::drift, "m per m")
+      .def_readwrite("sigma_xy", &LoopClosure::sigma_xy, "m")
+      .def_readwrite("sigma_degrees", &LoopClosure::sigma_degrees)
+      .def_readwrite("switch_off", &LoopClosure::switch_off, "sigmas");
+
+  using Graph = SubmapSlamConfig::Graph;
+  py::class_<Graph> graph(config, "Graph", "The pose graph.");
+  def_fields_init<Graph>(graph);
+  graph.def_readwrite("local_sigma_xy", &Graph::local_sigma_xy, "m")
+      .def_readwrite("local_sigma_degrees", &Graph::local_sigma_degrees)
+      .def_readwrite("odometry_sigma_xy", &Graph::odometry_sigma_xy, "m")
+      .def_readwrite("odometry_sigma_degrees", &Graph::odometry_sigma_degrees)
+      .def_readwrite("optimize_every", &Graph::optimize_every)
+      .def_readwrite("iterations", &Graph::iterations)
+      .def_readwrite("huber", &Graph::huber, "sigmas");
+
+  config.def_readwrite("cell", &SubmapSlamConfig::cell, "submap cell (m)")
+      .def_readwrite("headings", &SubmapSlamConfig::headings,
+                     "heading steps per turn of the match lattice")
+      .def_readwrite("sensor", &SubmapSlamConfig::sensor)
+      .def_readwrite("map", &SubmapSlamConfig::map)
+      .def_readwrite("submaps", &SubmapSlamConfig::submaps)
+      .def_readwrite("filter", &SubmapSlamConfig::filter)
+      .def_readwrite("tracking", &SubmapSlamConfig::tracking)
+      .def_readwrite("loops", &SubmapSlamConfig::loops)
+      .def_readwrite("graph", &SubmapSlamConfig::graph)
+      .def("check", &slam::check_submap_slam_config, "Raises ValueError naming a bad field.");
+
+  using slam::SubmapSlamStats;
+  py::class_<SubmapSlamStats>(m, "SubmapSlamStats", "What a submaps SLAM run did.")
+      .def_readonly("scans", &SubmapSlamStats::scans)
+      .def_readonly("nodes", &SubmapSlamStats::nodes)
+      .def_readonly("submaps", &SubmapSlamStats::submaps)
+      .def_readonly("wide_searches", &SubmapSlamStats::wide_searches)
+      .def_readonly("unmatched_scans", &SubmapSlamStats::unmatched_scans)
+      .def_readonly("loop_searches", &SubmapSlamStats::loop_searches)
+      .def_readonly("loop_closures", &SubmapSlamStats::loop_closures)
+      .def_readonly("switched_off_closures", &SubmapSlamStats::switched_off_closures)
+      .def_readonly("optimizations", &SubmapSlamStats::optimizations)
+      .def_readonly("readings", &SubmapSlamStats::readings)
+      .def_readonly("unusable_readings", &SubmapSlamStats::unusable_readings)
+      .def("__repr__", [](const py::object& self) { return fields_repr(self); });
+
+  using slam::SubmapSlam;
+  py::class_<SubmapSlam>(m, "SubmapSlam",
+                         "The submaps SLAM scan by scan; the first scan's robot pose is the SLAM "
+                         "frame. Call finish() after the last scan.")
+      .def(py::init([](const SubmapSlamConfig& cfg, const py::object& arithmetic,
+                       const core::Scan& first) {
+             const core::Arithmetic a = arithmetic_of(arithmetic);
+             py::gil_scoped_release release;
+             return std::make_unique<SubmapSlam>(cfg, a, first);
+           }),
+           "config"_a, "arithmetic"_a, "first"_a)
+      .def("insert", &SubmapSlam::insert, py::call_guard<py::gil_scoped_release>(),
+           "The next scan (the first one included).", "scan"_a)
+      .def("finish", &SubmapSlam::finish, py::call_guard<py::gil_scoped_release>(),
+           "Optimizes the graph once more with every closure found.")
+      .def("pose", &SubmapSlam::pose, "The last scan's pose, in the log's frame.")
+      .def(
+          "trajectory", [](const SubmapSlam& s) { return timed_poses_to_numpy(s.trajectory()); },
+          "(n, 4) array: t, x, y, theta of every scan so far, as the graph now places them.")
+      .def("frame", &SubmapSlam::frame, "The SLAM frame in the log's frame.")
+      .def(
+          "map", [](const SubmapSlam& s) { return grid_tuple(s.map()); },
+          "(S_eps int8 array (height, width), row 0 = bottom; GridGeometry), every node at its "
+          "optimized pose, in the SLAM frame.")
+      .def("codec", &SubmapSlam::codec, "The map's SepsCodec.")
+      .def("stats", &SubmapSlam::stats, "SubmapSlamStats so far.");
+
+  m.def(
+      "run_submap_slam",
+      [](const core::Log& log, const SubmapSlamConfig& cfg, const py::object& arithmetic) {
+        const core::Arithmetic a = arithmetic_of(arithmetic);
+        SubmapSlamStats stats;
+        slam::SlamRun run;
+        {
+          py::gil_scoped_release release;
+          run = slam::run_submap_slam(log, cfg, a, &stats);
+        }
+        return py::make_tuple(std::move(run), stats);
+      },
+      "The submaps SLAM (the `slam` command's default) over a whole log ('int': S_eps submaps, "
+      "or 'float'): (SlamRun, SubmapSlamStats).",
+      "log"_a, "config"_a = SubmapSlamConfig{}, "arithmetic"_a = "int");
+}
+
 void bind_slam(py::module_& m) {
   using slam::GridSlamConfig;
   py::class_<GridSlamConfig> config(
@@ -1144,6 +1290,8 @@ void bind_slam(py::module_& m) {
       },
       "SLAM over a whole log ('int': U_gamma pose grid, or 'float').", "log"_a,
       "config"_a = GridSlamConfig{}, "arithmetic"_a = "int");
+
+  bind_submap_slam(m);
 
   py::class_<slam::TrajectoryError>(m, "TrajectoryError")
       .def_readonly("matched", &slam::TrajectoryError::matched)
