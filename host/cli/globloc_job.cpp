@@ -9,13 +9,13 @@
 #include <limits>
 #include <stdexcept>
 #include <string_view>
-#include <thread>
 
 #include "cli/commands.hpp"
 #include "cli/log_input.hpp"
 #include "cli/options.hpp"
 #include "cli/output_folder_option.hpp"
 #include "cli/progress.hpp"
+#include "intgrid/core/parallel.hpp"
 #include "intgrid/figures/bitmap_font.hpp"
 #include "intgrid/io/atomic_file.hpp"
 #include "intgrid/io/image_io.hpp"
@@ -364,8 +364,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
             io::format_number(o.config.max_range) + " m maximum range)");
 
   localization::PoseSearchOptions search = o.search;
-  if (search.threads == 0)
-    search.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+  search.threads = core::threads_or_every_core(search.threads);
   naming_flags(pose_search_flags(), [&] { localization::check_pose_search_options(search); });
 
   const auto map_start = Clock::now();

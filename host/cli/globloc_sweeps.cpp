@@ -19,6 +19,7 @@
 #include "cli/commands.hpp"
 #include "cli/globloc_job.hpp"
 #include "cli/progress.hpp"
+#include "intgrid/core/parallel.hpp"
 #include "intgrid/figures/gnuplot.hpp"
 #include "intgrid/io/atomic_file.hpp"
 #include "intgrid/io/input_error.hpp"
@@ -374,7 +375,7 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
     }
   };
 
-  unsigned threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+  auto threads = static_cast<unsigned>(core::threads_or_every_core(static_cast<int>(o.threads)));
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, items.size()));
   {
     TerminalProgress progress("globloc-sweeps: trials");

@@ -3,17 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <set>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli/log_input.hpp"
 #include "cli/options.hpp"
 #include "cli/output_folder_option.hpp"
 #include "cli/progress.hpp"
+#include "intgrid/core/parallel.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/core/scan_insertion.hpp"
 #include "intgrid/io/image_io.hpp"
@@ -73,9 +72,7 @@ core::GridGeometry geometry_for(const core::Log& log, const MapJobOptions& o) {
 }
 
 int thread_count(const MapJobOptions& o) {
-  return o.threads > 0
-             ? o.threads
-             : static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+  return core::threads_or_every_core(o.threads);
 }
 
 // The job's large allocations, estimated before any is made: the grid (the probabilities, the
@@ -135,26 +132,16 @@ std::vector<core::RowBand> row_bands(const core::Log& log, const core::GridGeome
   return bands;
 }
 
-// Runs insert(band, stats, progress) for each band on its own thread (the first on this one,
-// with the progress), and returns the first band's reading counts with every band's cells.
+// Runs insert(band, stats, progress) for each band on its own thread (core::run_parts; the
+// first band with the progress), and returns the first band's reading counts with every band's
+// cells.
 template <class Insert>
 core::InsertionStats insert_by_bands(const std::vector<core::RowBand>& bands,
                                      const core::Progress& progress, const Insert& insert) {
   std::vector<core::InsertionStats> stats(bands.size());
-  std::vector<std::exception_ptr> errors(bands.size());
-  const auto run = [&](std::size_t b) {
-    try {
-      insert(bands[b], stats[b], b == 0 ? progress : core::Progress{});
-    } catch (...) {
-      errors[b] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> threads;
-  for (std::size_t b = 1; b < bands.size(); ++b) threads.emplace_back(run, b);
-  run(0);
-  for (std::thread& t : threads) t.join();
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+  core::run_parts(bands.size(), static_cast<int>(bands.size()), [&](std::size_t b) {
+    insert(bands[b], stats[b], b == 0 ? progress : core::Progress{});
+  });
   core::InsertionStats total = stats.front();
   total.cells_updated = 0;
   for (const core::InsertionStats& s : stats) total.cells_updated += s.cells_updated;

@@ -19,6 +19,18 @@
 
 namespace intgrid::core {
 
+// The thread count a `--threads N` option asks for: N, or with 0 every core the machine reports
+// (1 where it reports none or has no threads), at most 256.
+inline int threads_or_every_core(int threads) {
+#if INTGRID_HAS_THREADS
+  if (threads <= 0)
+    return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+#else
+  if (threads <= 0) return 1;
+#endif
+  return std::min(threads, 256);
+}
+
 // Runs part(p) for every p in [0, parts) on at most `threads` threads (the caller's among them;
 // threads <= 1 runs them in order on the caller's). The first exception a part throws is rethrown
 // once every thread has stopped.
