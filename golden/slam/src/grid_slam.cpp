@@ -2,22 +2,18 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <stdexcept>
 #include <utility>
 #include <variant>
 
 #include "intgrid/core/failure.hpp"
 #include "intgrid/core/scan_insertion.hpp"
+#include "intgrid/core/units.hpp"
 #include "intgrid/slam/log_run.hpp"
 #include "intgrid/slam/probabilities.hpp"
 
 namespace intgrid::slam {
-namespace {
-
-constexpr double kUnitRadians = 2.0 * std::numbers::pi / core::kAngleUnitsPerTurn;
-
-}  // namespace
+namespace {}  // namespace
 
 std::string scan_label(std::size_t number, double t) {
   char text[64];
@@ -37,12 +33,12 @@ QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_
                             double max_range, const std::string& name, std::size_t& readings,
                             std::size_t& unusable) {
   QuantizedScan s;
-  const long long max_mm = std::llround(max_range * 1000.0);
+  const long long max_mm = core::millimetres(max_range);
   s.range_mm.reserve(scan.ranges.size());
   for (const double r : scan.ranges) {
     ++readings;
     const long long mm = core::classify_range(r, scan.max_range) == core::RangeClass::valid
-                             ? std::llround(r * 1000.0)
+                             ? core::millimetres(r)
                              : 0;
     const bool usable = mm > 0 && mm < max_mm;
     unusable += !usable;
@@ -54,10 +50,9 @@ QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_
         std::hypot(u.x, u.y) > 1000.0)
       core::fail<std::invalid_argument>(name +
                                         ": the odometry jumps more than 1 km or is not finite");
-    s.odom_dx_mm = static_cast<std::int32_t>(std::llround(u.x * 1000.0));
-    s.odom_dy_mm = static_cast<std::int32_t>(std::llround(u.y * 1000.0));
-    s.odom_dtheta =
-        static_cast<std::int32_t>(std::llround(core::wrap_angle(u.theta) / kUnitRadians));
+    s.odom_dx_mm = static_cast<std::int32_t>(core::millimetres(u.x));
+    s.odom_dy_mm = static_cast<std::int32_t>(core::millimetres(u.y));
+    s.odom_dtheta = static_cast<std::int32_t>(core::angle_units(core::wrap_angle(u.theta)));
   }
   return s;
 }
@@ -115,7 +110,7 @@ void GridSlam::insert(const core::Scan& scan) {
 core::Pose2 GridSlam::pose() const {
   const SlamEstimate e = engine_->visit([](const auto& s) { return s.estimate(); });
   const core::Pose2 local{static_cast<double>(e.x_um) * 1e-6, static_cast<double>(e.y_um) * 1e-6,
-                          static_cast<double>(e.theta_q8) / 256.0 * kUnitRadians};
+                          static_cast<double>(e.theta_q8) / 256.0 * core::kRadiansPerAngleUnit};
   core::Pose2 world = core::compose(frame_, local);
   world.theta = core::wrap_angle(world.theta);
   return world;

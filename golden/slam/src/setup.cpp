@@ -1,30 +1,27 @@
 // The set-up of a SLAM run: every table the per-scan path needs that takes floating point to
 // build, and the GridSlamEngine constructor (which sizes the map from it).
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "intgrid/core/failure.hpp"
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/core/resolution.hpp"
+#include "intgrid/core/units.hpp"
 #include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/probabilities.hpp"
 
 namespace intgrid::slam {
 namespace {
 
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) core::fail<std::invalid_argument>(field + " " + what);
-}
+using core::require_field;
 
+// The setup's fields are 32-bit: their configured ranges keep them far inside.
 std::int32_t angle_units(double radians) {
-  return static_cast<std::int32_t>(
-      std::llround(radians / (2.0 * std::numbers::pi) * core::kAngleUnitsPerTurn));
+  return static_cast<std::int32_t>(core::angle_units(radians));
 }
-
 std::int32_t millimetres(double metres) {
-  return static_cast<std::int32_t>(std::llround(metres * 1000.0));
+  return static_cast<std::int32_t>(core::millimetres(metres));
 }
 
 }  // namespace
@@ -32,48 +29,49 @@ std::int32_t millimetres(double metres) {
 void check_grid_slam_config(const GridSlamConfig& c) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
-  require(positive(c.cell) && c.cell >= 0.001 && c.cell <= 10.0, "cell",
-          "must be in [0.001, 10] metres");
-  require(std::abs(c.cell * 1000.0 - std::round(c.cell * 1000.0)) < 1e-6, "cell",
-          "must be a whole number of millimetres");
-  require(c.headings >= 8 && c.headings <= core::kAngleUnitsPerTurn &&
-              (c.headings & (c.headings - 1)) == 0,
-          "headings", "must be a power of two from 8 to 65536");
-  require(c.window.cells >= 1 && c.window.cells <= 255 && c.window.cells % 2 == 1, "window.cells",
-          "must be odd, 1..255");
-  require(c.window.headings >= 1 && c.window.headings <= 255 && c.window.headings % 2 == 1 &&
-              c.window.headings <= c.headings,
-          "window.headings", "must be odd, 1..255 and at most headings");
-  require(c.schedule.lambda >= 1, "schedule.lambda", "must be >= 1");
-  require(c.schedule.xi >= 1, "schedule.xi", "must be >= 1");
-  require(positive(c.beam.sigma) && c.beam.sigma >= 0.001 && c.beam.sigma <= 1.0, "beam.sigma",
-          "must be in [0.001, 1] metres");
-  require(positive(c.beam.likelihood_floor) && c.beam.likelihood_floor < 1.0,
-          "beam.likelihood_floor", "must be in (0, 1)");
-  require(c.beam.beams >= 1, "beam.beams", "must be >= 1");
-  require(c.map.empty_divisor >= 1 && c.map.empty_divisor <= 127, "map.empty_divisor",
-          "must be 1..127");
-  require(c.beam.tempering >= 1 && c.beam.tempering <= 1000, "beam.tempering", "must be 1..1000");
-  require(positive(c.beam.max_range) && c.beam.max_range <= 1000.0, "beam.max_range",
-          "must be in (0, 1000] metres");
-  require(std::isfinite(c.window.pose_cutoff) && c.window.pose_cutoff > 0.0 &&
-              c.window.pose_cutoff <= 1.0,
-          "window.pose_cutoff", "must be in (0, 1]");
-  require(std::isfinite(c.window.pose_prune) && c.window.pose_prune >= 0.0 &&
-              c.window.pose_prune < c.window.pose_cutoff,
-          "window.pose_prune", "must be in [0, window.pose_cutoff)");
+  require_field(positive(c.cell) && c.cell >= 0.001 && c.cell <= 10.0, "cell",
+                "must be in [0.001, 10] metres");
+  require_field(std::abs(c.cell * 1000.0 - std::round(c.cell * 1000.0)) < 1e-6, "cell",
+                "must be a whole number of millimetres");
+  require_field(c.headings >= 8 && c.headings <= core::kAngleUnitsPerTurn &&
+                    (c.headings & (c.headings - 1)) == 0,
+                "headings", "must be a power of two from 8 to 65536");
+  require_field(c.window.cells >= 1 && c.window.cells <= 255 && c.window.cells % 2 == 1,
+                "window.cells", "must be odd, 1..255");
+  require_field(c.window.headings >= 1 && c.window.headings <= 255 && c.window.headings % 2 == 1 &&
+                    c.window.headings <= c.headings,
+                "window.headings", "must be odd, 1..255 and at most headings");
+  require_field(c.schedule.lambda >= 1, "schedule.lambda", "must be >= 1");
+  require_field(c.schedule.xi >= 1, "schedule.xi", "must be >= 1");
+  require_field(positive(c.beam.sigma) && c.beam.sigma >= 0.001 && c.beam.sigma <= 1.0,
+                "beam.sigma", "must be in [0.001, 1] metres");
+  require_field(positive(c.beam.likelihood_floor) && c.beam.likelihood_floor < 1.0,
+                "beam.likelihood_floor", "must be in (0, 1)");
+  require_field(c.beam.beams >= 1, "beam.beams", "must be >= 1");
+  require_field(c.map.empty_divisor >= 1 && c.map.empty_divisor <= 127, "map.empty_divisor",
+                "must be 1..127");
+  require_field(c.beam.tempering >= 1 && c.beam.tempering <= 1000, "beam.tempering",
+                "must be 1..1000");
+  require_field(positive(c.beam.max_range) && c.beam.max_range <= 1000.0, "beam.max_range",
+                "must be in (0, 1000] metres");
+  require_field(std::isfinite(c.window.pose_cutoff) && c.window.pose_cutoff > 0.0 &&
+                    c.window.pose_cutoff <= 1.0,
+                "window.pose_cutoff", "must be in (0, 1]");
+  require_field(std::isfinite(c.window.pose_prune) && c.window.pose_prune >= 0.0 &&
+                    c.window.pose_prune < c.window.pose_cutoff,
+                "window.pose_prune", "must be in [0, window.pose_cutoff)");
   for (const double v : {c.motion.xy0, c.motion.xy_per_m, c.motion.xy_per_rad, c.motion.theta0,
                          c.motion.theta_per_m, c.motion.theta_per_rad})
-    require(non_negative(v) && v < 100.0, "motion", "must be finite, >= 0 and < 100");
-  require(c.map.seps_bits >= 2 && c.map.seps_bits <= 8, "map.seps_bits",
-          "must be 2..8 (the map is 8-bit)");
-  require(c.map.seps_levels >= 1 && c.map.seps_levels < (1 << (c.map.seps_bits - 1)),
-          "map.seps_levels", "must be >= 1 and below the largest index");
-  require(c.ugamma.bits >= 12 && c.ugamma.bits <= 24, "ugamma.bits", "must be 12..24");
-  require(c.ugamma.steps_per_halving >= 1 && c.ugamma.steps_per_halving <= 256,
-          "ugamma.steps_per_halving", "must be 1..256");
-  require(non_negative(c.map.margin) && c.map.margin <= 1000.0, "map.margin",
-          "must be in [0, 1000]");
+    require_field(non_negative(v) && v < 100.0, "motion", "must be finite, >= 0 and < 100");
+  require_field(c.map.seps_bits >= 2 && c.map.seps_bits <= 8, "map.seps_bits",
+                "must be 2..8 (the map is 8-bit)");
+  require_field(c.map.seps_levels >= 1 && c.map.seps_levels < (1 << (c.map.seps_bits - 1)),
+                "map.seps_levels", "must be >= 1 and below the largest index");
+  require_field(c.ugamma.bits >= 12 && c.ugamma.bits <= 24, "ugamma.bits", "must be 12..24");
+  require_field(c.ugamma.steps_per_halving >= 1 && c.ugamma.steps_per_halving <= 256,
+                "ugamma.steps_per_halving", "must be 1..256");
+  require_field(non_negative(c.map.margin) && c.map.margin <= 1000.0, "map.margin",
+                "must be in [0, 1000]");
 }
 
 SlamSetup make_slam_setup(const GridSlamConfig& config, const core::Scan& geometry,
@@ -125,7 +123,7 @@ SlamSetup make_slam_setup(const GridSlamConfig& config, const core::Scan& geomet
                                      s.codec, std::max<std::int32_t>(1, s.cell_mm / 8),
                                      s.max_range_mm, config.map.empty_divisor);
 
-  const double unit_rad = 2.0 * std::numbers::pi / core::kAngleUnitsPerTurn;
+  const double unit_rad = core::kRadiansPerAngleUnit;
   s.motion_xy0_mm = millimetres(config.motion.xy0);
   s.motion_xy_per_mm_q16 = std::llround(config.motion.xy_per_m * 65536.0);
   s.motion_xy_per_unit_q16 = std::llround(config.motion.xy_per_rad * 1000.0 * unit_rad * 65536.0);

@@ -14,6 +14,7 @@
 #include "intgrid/core/failure.hpp"
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/core/resolution.hpp"
+#include "intgrid/core/units.hpp"
 #include "intgrid/optimization/pose_graph.hpp"
 #include "intgrid/slam/grid_slam.hpp"
 #include "submap_tracking.hpp"
@@ -21,25 +22,14 @@
 namespace intgrid::slam {
 namespace {
 
-constexpr double kUnitRadians = 2.0 * std::numbers::pi / core::kAngleUnitsPerTurn;
-
-void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) core::fail<std::invalid_argument>(field + " " + what);
-}
-
-std::int64_t millimetres(double m) {
-  return std::llround(m * 1000.0);
-}
-std::int64_t angle_units(double radians) {
-  return std::llround(radians / kUnitRadians);
-}
-double radians(double degrees) {
-  return degrees * std::numbers::pi / 180.0;
-}
+using core::angle_units;
+using core::millimetres;
+using core::radians;
+using core::require_field;
 
 core::Pose2 to_pose2(const SlamPose& p) {
   return {static_cast<double>(p.x_mm) * 1e-3, static_cast<double>(p.y_mm) * 1e-3,
-          static_cast<double>(p.theta) * kUnitRadians};
+          static_cast<double>(p.theta) * core::kRadiansPerAngleUnit};
 }
 SlamPose to_slam_pose(const core::Pose2& p) {
   return {millimetres(p.x), millimetres(p.y), angle_units(p.theta)};
@@ -103,14 +93,14 @@ core::IsmTable<LogOdds> make_table(const SubmapSlamConfig& c, const core::SepsCo
 void check_submap_slam_config(const SubmapSlamConfig& c) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
-  require(positive(c.cell) && c.cell >= 0.005 && c.cell <= 1.0, "cell",
-          "must be in [0.005, 1] metres");
-  require(std::abs(c.cell * 1000.0 - std::round(c.cell * 1000.0)) < 1e-6, "cell",
-          "must be a whole number of millimetres");
-  require(c.headings >= 64 && c.headings <= 16384 && (c.headings & (c.headings - 1)) == 0,
-          "headings", "must be a power of two from 64 to 16384");
-  require(positive(c.sensor.sigma) && c.sensor.sigma >= 0.001 && c.sensor.sigma <= 1.0,
-          "sensor.sigma", "must be in [0.001, 1] metres");
+  require_field(positive(c.cell) && c.cell >= 0.005 && c.cell <= 1.0, "cell",
+                "must be in [0.005, 1] metres");
+  require_field(std::abs(c.cell * 1000.0 - std::round(c.cell * 1000.0)) < 1e-6, "cell",
+                "must be a whole number of millimetres");
+  require_field(c.headings >= 64 && c.headings <= 16384 && (c.headings & (c.headings - 1)) == 0,
+                "headings", "must be a power of two from 64 to 16384");
+  require_field(positive(c.sensor.sigma) && c.sensor.sigma >= 0.001 && c.sensor.sigma <= 1.0,
+                "sensor.sigma", "must be in [0.001, 1] metres");
   // The submaps' S_eps codec needs the ISM's Pmax in (1/2, 1) and eps in (0, 1/2).
   try {
     (void)make_codec(c);
@@ -119,25 +109,26 @@ void check_submap_slam_config(const SubmapSlamConfig& c) {
                                       " m with sensor.sigma " + core::number_text(c.sensor.sigma) +
                                       " m gives no S_eps codec: " + e.what());
   }
-  require(positive(c.sensor.max_range) && c.sensor.max_range <= 200.0 &&
-              c.sensor.max_range >= 2.0 * c.cell,
-          "sensor.max_range", "must be in [2 cells, 200] metres");
-  require(c.map.seps_bits >= 2 && c.map.seps_bits <= 8, "map.seps_bits",
-          "must be 2..8 (the map is 8-bit)");
-  require(c.map.seps_levels >= 1 && c.map.seps_levels < (1 << (c.map.seps_bits - 1)),
-          "map.seps_levels", "must be >= 1 and below the largest index");
-  require(c.map.empty_divisor >= 1 && c.map.empty_divisor <= 127, "map.empty_divisor",
-          "must be 1..127");
-  require(c.submaps.scans >= 1 && c.submaps.scans <= 100000, "submaps.scans", "must be 1..100000");
-  require(non_negative(c.filter.distance) && c.filter.distance <= 100.0, "filter.distance",
-          "must be in [0, 100] metres");
-  require(non_negative(c.filter.degrees) && c.filter.degrees <= 180.0, "filter.degrees",
-          "must be in [0, 180]");
-  require(non_negative(c.filter.seconds) && c.filter.seconds <= 1e6, "filter.seconds",
-          "must be in [0, 1e6]");
+  require_field(positive(c.sensor.max_range) && c.sensor.max_range <= 200.0 &&
+                    c.sensor.max_range >= 2.0 * c.cell,
+                "sensor.max_range", "must be in [2 cells, 200] metres");
+  require_field(c.map.seps_bits >= 2 && c.map.seps_bits <= 8, "map.seps_bits",
+                "must be 2..8 (the map is 8-bit)");
+  require_field(c.map.seps_levels >= 1 && c.map.seps_levels < (1 << (c.map.seps_bits - 1)),
+                "map.seps_levels", "must be >= 1 and below the largest index");
+  require_field(c.map.empty_divisor >= 1 && c.map.empty_divisor <= 127, "map.empty_divisor",
+                "must be 1..127");
+  require_field(c.submaps.scans >= 1 && c.submaps.scans <= 100000, "submaps.scans",
+                "must be 1..100000");
+  require_field(non_negative(c.filter.distance) && c.filter.distance <= 100.0, "filter.distance",
+                "must be in [0, 100] metres");
+  require_field(non_negative(c.filter.degrees) && c.filter.degrees <= 180.0, "filter.degrees",
+                "must be in [0, 180]");
+  require_field(non_negative(c.filter.seconds) && c.filter.seconds <= 1e6, "filter.seconds",
+                "must be in [0, 1e6]");
   const auto window = [&](double m, double degrees, const char* m_name, const char* degrees_name) {
-    require(non_negative(m) && m <= 20.0, m_name, "must be in [0, 20] metres");
-    require(non_negative(degrees) && degrees <= 180.0, degrees_name, "must be in [0, 180]");
+    require_field(non_negative(m) && m <= 20.0, m_name, "must be in [0, 20] metres");
+    require_field(non_negative(degrees) && degrees <= 180.0, degrees_name, "must be in [0, 180]");
   };
   window(c.tracking.window, c.tracking.window_degrees, "tracking.window",
          "tracking.window_degrees");
@@ -145,29 +136,30 @@ void check_submap_slam_config(const SubmapSlamConfig& c) {
          "tracking.wide_degrees");
   window(c.loops.window, c.loops.window_degrees, "loops.window", "loops.window_degrees");
   // Every pose of these windows is scored.
-  require(c.tracking.window <= 2.0, "tracking.window", "must be at most 2 metres");
-  require(c.tracking.wide_window <= 3.0, "tracking.wide_window", "must be at most 3 metres");
-  require(non_negative(c.tracking.wide_below) && c.tracking.wide_below <= 1.0,
-          "tracking.wide_below", "must be in [0, 1]");
-  require(non_negative(c.tracking.prior_xy) && c.tracking.prior_xy <= 1000.0, "tracking.prior_xy",
-          "must be in [0, 1000] metres (0: no prior)");
-  require(non_negative(c.tracking.prior_degrees) && c.tracking.prior_degrees <= 1e4,
-          "tracking.prior_degrees", "must be in [0, 1e4] (0: no prior)");
-  require(non_negative(c.tracking.prior_xy_per_m) && c.tracking.prior_xy_per_m <= 100.0,
-          "tracking.prior_xy_per_m", "must be in [0, 100]");
-  require(non_negative(c.tracking.prior_degrees_per_degree) &&
-              c.tracking.prior_degrees_per_degree <= 100.0,
-          "tracking.prior_degrees_per_degree", "must be in [0, 100]");
-  require(c.tracking.min_hits >= 1 && c.tracking.min_hits <= 100000, "tracking.min_hits",
-          "must be 1..100000");
-  require(c.loops.every >= 1, "loops.every", "must be >= 1");
-  require(c.loops.submaps >= 1, "loops.submaps", "must be >= 1");
-  require(non_negative(c.loops.max_distance) && c.loops.max_distance <= 1000.0,
-          "loops.max_distance", "must be in [0, 1000] metres");
-  require(positive(c.loops.min_score) && c.loops.min_score <= 1.0, "loops.min_score",
-          "must be in (0, 1]");
-  require(non_negative(c.loops.drift) && c.loops.drift <= 1.0, "loops.drift", "must be in [0, 1]");
-  require(positive(c.loops.switch_off), "loops.switch_off", "must be finite and > 0");
+  require_field(c.tracking.window <= 2.0, "tracking.window", "must be at most 2 metres");
+  require_field(c.tracking.wide_window <= 3.0, "tracking.wide_window", "must be at most 3 metres");
+  require_field(non_negative(c.tracking.wide_below) && c.tracking.wide_below <= 1.0,
+                "tracking.wide_below", "must be in [0, 1]");
+  require_field(non_negative(c.tracking.prior_xy) && c.tracking.prior_xy <= 1000.0,
+                "tracking.prior_xy", "must be in [0, 1000] metres (0: no prior)");
+  require_field(non_negative(c.tracking.prior_degrees) && c.tracking.prior_degrees <= 1e4,
+                "tracking.prior_degrees", "must be in [0, 1e4] (0: no prior)");
+  require_field(non_negative(c.tracking.prior_xy_per_m) && c.tracking.prior_xy_per_m <= 100.0,
+                "tracking.prior_xy_per_m", "must be in [0, 100]");
+  require_field(non_negative(c.tracking.prior_degrees_per_degree) &&
+                    c.tracking.prior_degrees_per_degree <= 100.0,
+                "tracking.prior_degrees_per_degree", "must be in [0, 100]");
+  require_field(c.tracking.min_hits >= 1 && c.tracking.min_hits <= 100000, "tracking.min_hits",
+                "must be 1..100000");
+  require_field(c.loops.every >= 1, "loops.every", "must be >= 1");
+  require_field(c.loops.submaps >= 1, "loops.submaps", "must be >= 1");
+  require_field(non_negative(c.loops.max_distance) && c.loops.max_distance <= 1000.0,
+                "loops.max_distance", "must be in [0, 1000] metres");
+  require_field(positive(c.loops.min_score) && c.loops.min_score <= 1.0, "loops.min_score",
+                "must be in (0, 1]");
+  require_field(non_negative(c.loops.drift) && c.loops.drift <= 1.0, "loops.drift",
+                "must be in [0, 1]");
+  require_field(positive(c.loops.switch_off), "loops.switch_off", "must be finite and > 0");
   for (const auto& [v, name] : {std::pair{c.loops.sigma_xy, "loops.sigma_xy"},
                                 {c.loops.sigma_degrees, "loops.sigma_degrees"},
                                 {c.graph.local_sigma_xy, "graph.local_sigma_xy"},
@@ -175,10 +167,10 @@ void check_submap_slam_config(const SubmapSlamConfig& c) {
                                 {c.graph.odometry_sigma_xy, "graph.odometry_sigma_xy"},
                                 {c.graph.odometry_sigma_degrees, "graph.odometry_sigma_degrees"},
                                 {c.graph.huber, "graph.huber"}})
-    require(positive(v) && v <= 1000.0, name, "must be in (0, 1000]");
-  require(c.graph.optimize_every >= 1, "graph.optimize_every", "must be >= 1");
-  require(c.graph.iterations >= 1 && c.graph.iterations <= 1000, "graph.iterations",
-          "must be 1..1000");
+    require_field(positive(v) && v <= 1000.0, name, "must be in (0, 1000]");
+  require_field(c.graph.optimize_every >= 1, "graph.optimize_every", "must be >= 1");
+  require_field(c.graph.iterations >= 1 && c.graph.iterations <= 1000, "graph.iterations",
+                "must be 1..1000");
 }
 
 struct SubmapSlam::Engine {
@@ -270,7 +262,7 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
   void insert(const QuantizedScan& scan, std::shared_ptr<const SlamSensor> sensor,
               double t) override {
     ++stats.scans;
-    const TrackStep step = tracker.track(scan, *sensor, std::llround(t * 1000.0));
+    const TrackStep step = tracker.track(scan, *sensor, core::milliseconds(t));
     stats.wide_searches += step.wide;
     stats.unmatched_scans += !step.matched;
     for (Submap<Cell>& done : tracker.take_finished()) finish_submap(std::move(done));
@@ -319,9 +311,9 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
       const double dx = static_cast<double>(step.pose.x_mm - nodes.back().local.x_mm) * 1e-3,
                    dy = static_cast<double>(step.pose.y_mm - nodes.back().local.y_mm) * 1e-3;
       node.travel = nodes.back().travel + std::hypot(dx, dy);
-      node.turn =
-          nodes.back().turn +
-          std::abs(static_cast<double>(step.pose.theta - nodes.back().local.theta)) * kUnitRadians;
+      node.turn = nodes.back().turn +
+                  std::abs(static_cast<double>(step.pose.theta - nodes.back().local.theta)) *
+                      core::kRadiansPerAngleUnit;
     }
     for (const std::size_t id : step.submaps) {
       SubmapRecord& s = submaps[id];
@@ -541,7 +533,7 @@ SubmapSlam::SubmapSlam(const SubmapSlamConfig& config, core::Arithmetic arithmet
   s.submap_scans = config.submaps.scans;
   s.filter_mm = millimetres(config.filter.distance);
   s.filter_units = angle_units(radians(config.filter.degrees));
-  s.filter_ms = std::llround(config.filter.seconds * 1000.0);
+  s.filter_ms = core::milliseconds(config.filter.seconds);
   if (arithmetic == core::Arithmetic::integer)
     engine_ = std::make_unique<EngineOf<std::int8_t>>(config, codec, std::move(s));
   else

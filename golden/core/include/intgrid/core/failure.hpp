@@ -19,6 +19,12 @@ template <class Error>
 #endif
 }
 
+// Throws std::invalid_argument "FIELD WHAT" unless ok: how a configuration check names the field
+// at fault by its path ("loops.window must be > 0").
+inline void require_field(bool ok, const std::string& field, const std::string& what) {
+  if (!ok) fail<std::invalid_argument>(field + " " + what);
+}
+
 // A number as failure messages print it: six significant digits ("0.05", "1e+09").
 inline std::string number_text(double v) {
   char text[32];

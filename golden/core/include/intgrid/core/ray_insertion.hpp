@@ -15,10 +15,9 @@
 #include "intgrid/core/grid.hpp"
 #include "intgrid/core/sensor_model.hpp"
 #include "intgrid/core/seps.hpp"
+#include "intgrid/core/units.hpp"
 
 namespace intgrid::core {
-
-inline constexpr std::int32_t kAngleUnitsPerTurn = 65536;
 
 // sin(2 pi a / 2^16) * 2^16 rounded, a = 0..2^16 - 1: the one table of the integer geometry.
 std::vector<std::int32_t> make_sine_table_q16();
