@@ -1101,10 +1101,12 @@ void bind_submap_slam(py::module_& m) {
       .def_readonly("unmatched_scans", &SubmapSlamStats::unmatched_scans)
       .def_readonly("loop_searches", &SubmapSlamStats::loop_searches)
       .def_readonly("loop_closures", &SubmapSlamStats::loop_closures)
+      .def_readonly("rejected_closures", &SubmapSlamStats::rejected_closures)
       .def_readonly("switched_off_closures", &SubmapSlamStats::switched_off_closures)
       .def_readonly("optimizations", &SubmapSlamStats::optimizations)
       .def_readonly("readings", &SubmapSlamStats::readings)
       .def_readonly("unusable_readings", &SubmapSlamStats::unusable_readings)
+      .def_readonly("peak_pyramid_bytes", &SubmapSlamStats::peak_pyramid_bytes)
       .def("__repr__", [](const py::object& self) { return fields_repr(self); });
 
   using slam::SubmapSlam;

@@ -26,8 +26,8 @@ def test_scan_by_scan_gives_the_whole_runs_trajectory_map_and_counts(runs, loop_
     assert geometry == run_geometry and ours.dtype == np.int8
     np.testing.assert_array_equal(ours, theirs)
     mine = slam.stats()
-    assert (mine.scans, mine.nodes, mine.submaps, mine.loop_closures) == (
-        stats.scans, stats.nodes, stats.submaps, stats.loop_closures)
+    assert (mine.scans, mine.nodes, mine.submaps, mine.loop_closures, mine.rejected_closures) == (
+        stats.scans, stats.nodes, stats.submaps, stats.loop_closures, stats.rejected_closures)
     assert stats.scans == len(loop_log.scans) and stats.readings == 361 * stats.scans
     assert stats.submaps >= 2 and stats.loop_closures > 0  # the loop closes
 
