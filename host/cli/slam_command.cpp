@@ -201,6 +201,11 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::SubmapSlamConf
   add("--submap-scans", c.submaps.scans,
       "nodes a submap takes before the next starts (each ends with twice as many)",
       whole_at_least(1));
+  added.push_back(cmd.add_option("--submap-rematch", c.submaps.rematch,
+                                 "once a submap is complete, match its first --submap-scans nodes "
+                                 "again against it (true|false)")
+                      ->capture_default_str()
+                      ->group(group));
   add("--bits,--seps-bits", c.map.seps_bits, "S_eps index width of the submaps' cells",
       whole_at_least(1));
   add("--levels,--seps-levels", c.map.seps_levels, "one reading's strongest occupied index",

@@ -133,7 +133,7 @@ nlohmann::json submap_settings_json(const slam::SubmapSlamConfig& c, const core:
             {"seps_levels", c.map.seps_levels},
             {"empty_divisor", c.map.empty_divisor}}},
           {"eps", codec.eps()},
-          {"submaps", {{"scans", c.submaps.scans}}},
+          {"submaps", {{"scans", c.submaps.scans}, {"rematch", c.submaps.rematch}}},
           {"filter",
            {{"distance", c.filter.distance},
             {"degrees", c.filter.degrees},

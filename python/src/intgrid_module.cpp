@@ -1030,8 +1030,11 @@ void bind_submap_slam(py::module_& m) {
 
   py::class_<SubmapSlamConfig::Submaps> submaps(config, "Submaps", "How submaps grow.");
   def_fields_init<SubmapSlamConfig::Submaps>(submaps);
-  submaps.def_readwrite("scans", &SubmapSlamConfig::Submaps::scans,
-                        "nodes a submap takes before the next starts");
+  submaps
+      .def_readwrite("scans", &SubmapSlamConfig::Submaps::scans,
+                     "nodes a submap takes before the next starts")
+      .def_readwrite("rematch", &SubmapSlamConfig::Submaps::rematch,
+                     "once complete, match its first `scans` nodes again against it");
 
   py::class_<SubmapSlamConfig::MotionFilter> filter(
       config, "MotionFilter", "A scan becomes a node once the pose moved this far.");

@@ -768,6 +768,8 @@ TEST_F(Cli, SlamRefusesTheOtherEnginesOptionsAndBadSubmapValues) {
       {"--loop-min-score 0", "--loop-min-score"},
       {"--wide-below 1.5", "--wide-below"},
       {"--submap-scans 0", "--submap-scans"},
+      {"--submap-rematch maybe", "--submap-rematch"},
+      {"--engine grid --submap-rematch false", "--submap-rematch: a setting of --engine submaps"},
       {"--huber nan", "--huber"},
       {"--graph-iterations 2.5", "--graph-iterations"},
       {"--filter-degrees 200", "--filter-degrees: must be in [0, 180]"},

@@ -227,6 +227,42 @@ TEST(PoseGraph, ConflictingMeasurementsAverage) {
   EXPECT_NEAR(summary.final_cost, 1.5, 1e-9);
 }
 
+// A measurement taken again replaces the first: the same three nodes as above, node 2's second
+// measurement replaced by the first's value, so both agree and node 2 lands on it with no cost
+// left; a graph built with the value from the start gives the same poses.
+TEST(PoseGraph, AMeasurementTakenAgainReplacesTheFirst) {
+  const auto three_nodes = [](const Pose2& second) {
+    PoseGraph graph;
+    graph.add_node({0.0, 0.0, 0.0});
+    graph.add_node({0.8, 0.3, 1.2});
+    graph.add_node({1.0, 2.5, 2.0});
+    graph.add_edge({0, 1, {1.0, 0.0, kPi / 2.0}, 0.1, 0.05});
+    graph.add_edge({1, 2, {1.0, 0.0, 0.1}, 0.2, 0.1});
+    graph.add_edge({1, 2, second, 0.2, 0.1});
+    return graph;
+  };
+  PoseGraph again = three_nodes({1.2, 0.2, 0.3});
+  again.set_measurement(2, {1.0, 0.0, 0.1});
+  EXPECT_EQ(again.edge_list()[2].measured.x, 1.0);
+  const OptimizeSummary summary = again.optimize();
+  PoseGraph agreeing = three_nodes({1.0, 0.0, 0.1});
+  agreeing.optimize();
+  const Pose2 node2 = compose({1.0, 0.0, kPi / 2.0}, {1.0, 0.0, 0.1});
+  EXPECT_NEAR(again.poses()[2].x, node2.x, 1e-9);
+  EXPECT_NEAR(again.poses()[2].y, node2.y, 1e-9);
+  EXPECT_NEAR(again.poses()[2].theta, node2.theta, 1e-9);
+  EXPECT_NEAR(summary.final_cost, 0.0, 1e-12);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(again.poses()[i].x, agreeing.poses()[i].x) << i;
+    EXPECT_EQ(again.poses()[i].y, agreeing.poses()[i].y) << i;
+    EXPECT_EQ(again.poses()[i].theta, agreeing.poses()[i].theta) << i;
+  }
+  EXPECT_THROW(again.set_measurement(3, {}), std::out_of_range);
+  EXPECT_THROW(again.set_measurement(0, {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0}),
+               std::invalid_argument);
+  EXPECT_EQ(again.edge_list()[0].measured.x, 1.0);  // a refused measurement changes nothing
+}
+
 // (d) One grossly wrong loop closure among many correct ones: with the Huber loss it moves the
 // solution far less than without, and it is the one edge past huber_scale.
 TEST(PoseGraph, RobustEdgeResistsAnOutlier) {

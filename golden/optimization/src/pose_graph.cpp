@@ -452,6 +452,14 @@ void PoseGraph::set_active(std::size_t edge, bool active) {
   edges_[edge].active = active;
 }
 
+void PoseGraph::set_measurement(std::size_t edge, const core::Pose2& measured) {
+  if (edge >= edges_.size()) throw std::out_of_range("pose graph: no edge " + std::to_string(edge));
+  if (!is_finite(measured))
+    throw std::invalid_argument("pose graph: edge " + std::to_string(edge) +
+                                " measured as a pose that is not finite");
+  edges_[edge].measured = measured;
+}
+
 double PoseGraph::whitened_error(std::size_t edge) const {
   if (edge >= edges_.size()) throw std::out_of_range("pose graph: no edge " + std::to_string(edge));
   const Edge& e = edges_[edge];

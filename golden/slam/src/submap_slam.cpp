@@ -199,7 +199,8 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     std::size_t vertex = 0;
     SlamPose anchor;
     std::vector<std::size_t> nodes;
-    std::optional<LocalGrid<Cell>> grid;  // once finished
+    std::vector<std::size_t> local_edges;  // each node's edge to it, in the graph
+    std::optional<LocalGrid<Cell>> grid;   // once finished
     // What its own nodes score in it, each at its pose, as a fraction of every hit on the
     // strongest cell: the median over those with at least min_hits hits (0: none had).
     double own_score = 0.0;
@@ -277,21 +278,46 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     SubmapRecord& s = submaps[done.id];
     s.grid = std::move(done.grid);
     const TrackerSetup& setup = tracker.setup();
+    std::vector<ScanPoints> points;
     std::vector<double> scores;
     for (const std::size_t i : s.nodes) {
       const Node& n = nodes[i];
-      const ScanPoints points =
-          scan_points(tracker.rays(), *n.sensor, n.range_mm, setup.max_range_mm);
-      if (static_cast<int>(points.size()) < setup.min_hits) continue;
-      const Match<Cell> own = match_exhaustive(*s.grid, tracker.rays(), points, n.local,
+      points.push_back(scan_points(tracker.rays(), *n.sensor, n.range_mm, setup.max_range_mm));
+      if (static_cast<int>(points.back().size()) < setup.min_hits) continue;
+      const Match<Cell> own = match_exhaustive(*s.grid, tracker.rays(), points.back(), n.local,
                                                SearchWindow{}, setup.max_index, MatchScore<Cell>{});
       scores.push_back(static_cast<double>(own.evidence) /
-                       (static_cast<double>(points.size()) * setup.max_index));
+                       (static_cast<double>(points.back().size()) * setup.max_index));
     }
     if (scores.empty()) return;
     const auto middle = scores.begin() + static_cast<std::ptrdiff_t>(scores.size() / 2);
     std::nth_element(scores.begin(), middle, scores.end());
     s.own_score = *middle;
+    if (config.submaps.rematch) rematch_young_nodes(s, points);
+  }
+
+  // The front end matches a scan against the older active submap only. A submap's first
+  // submaps.scans nodes were therefore placed in it through another submap (or, in the first
+  // submap, against the few scans it held then): matched again against it once it is complete,
+  // as the front end would (its narrow window, the prior weighed by what the submap's own nodes
+  // score in it), each of their edges to it takes the pose found.
+  void rematch_young_nodes(const SubmapRecord& s, const std::vector<ScanPoints>& points) {
+    const TrackerSetup& setup = tracker.setup();
+    SearchWindow window = setup.narrow;
+    window.prior_weight_permille =
+        std::clamp<std::int64_t>(std::llround(s.own_score * 1000.0), 1, 1000);
+    const std::size_t young =
+        std::min(s.nodes.size(), static_cast<std::size_t>(config.submaps.scans));
+    for (std::size_t j = 0; j < young; ++j) {
+      if (static_cast<int>(points[j].size()) < setup.min_hits) continue;
+      const SlamPose& local = nodes[s.nodes[j]].local;
+      const Match<Cell> lattice = match_exhaustive(*s.grid, tracker.rays(), points[j], local,
+                                                   window, setup.max_index, MatchScore<Cell>{});
+      const Match<Cell> refined =
+          refine_match(*s.grid, tracker.rays(), points[j], local, window, setup.max_index, lattice);
+      graph.set_measurement(s.local_edges[j],
+                            core::relative(to_pose2(s.anchor), to_pose2(refined.pose)));
+    }
   }
 
   void add_node(const TrackStep& step, const QuantizedScan& scan,
@@ -302,7 +328,8 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     for (const std::size_t id : step.submaps)
       if (id == submaps.size()) {
         SlamPose anchor{step.pose.x_mm, step.pose.y_mm, 0};
-        submaps.push_back({graph.add_node(core::compose(corr, to_pose2(anchor))), anchor, {}, {}});
+        submaps.push_back(
+            {graph.add_node(core::compose(corr, to_pose2(anchor))), anchor, {}, {}, {}});
         ++stats.submaps;
       }
     Node node{step.pose, graph.add_node(core::compose(corr, local)), scan.range_mm,
@@ -317,6 +344,7 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     }
     for (const std::size_t id : step.submaps) {
       SubmapRecord& s = submaps[id];
+      s.local_edges.push_back(graph.edges());
       graph.add_edge({s.vertex, node.vertex, core::relative(to_pose2(s.anchor), local),
                       g.local_sigma_xy, radians(g.local_sigma_degrees), false});
       s.nodes.push_back(nodes.size());

@@ -66,6 +66,9 @@ class PoseGraph {
   // Switches an edge on or off (Edge::active). Throws std::out_of_range for an index that is no
   // edge.
   void set_active(std::size_t edge, bool active);
+  // Replaces an edge's measurement (a constraint measured again). Throws std::out_of_range for an
+  // index that is no edge, std::invalid_argument for a measurement that is not finite.
+  void set_measurement(std::size_t edge, const core::Pose2& measured);
   // How far the current poses are from an edge's measurement, in its sigmas: the norm of its
   // whitened residual (active or not). Throws std::out_of_range for an index that is no edge.
   double whitened_error(std::size_t edge) const;
