@@ -18,3 +18,39 @@ function(intgrid_lint_rtl name top)
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}/rtl)
   set_tests_properties(${name} PROPERTIES LABELS hw)
 endfunction()
+
+# intgrid_rtl_fault(SOURCES NAME FILE FROM TO): a fault for a checker's self-test. In the list of
+# RTL paths held by the variable SOURCES, rtl/FILE is replaced by a copy in which FROM (found
+# exactly once) becomes TO, written to <build>/rtl_faults/NAME/FILE. The shipped RTL holds no
+# fault switches: each fault lives here, in the testbench, beside the test that must catch it.
+# Configuration fails if FROM is not found exactly once, so that an edit of the RTL never
+# silently turns a fault into the intact source. Call it again on the same list for a fault
+# across files.
+function(intgrid_rtl_fault sources name file from to)
+  set(src ${PROJECT_SOURCE_DIR}/rtl/${file})
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${src})
+  file(READ ${src} text)
+  string(FIND "${text}" "${from}" first)
+  string(FIND "${text}" "${from}" last REVERSE)
+  if(first EQUAL -1 OR NOT first EQUAL last)
+    message(FATAL_ERROR "fault ${name}: `${from}` is not found exactly once in rtl/${file}")
+  endif()
+  string(REPLACE "${from}" "${to}" text "${text}")
+  set(out ${CMAKE_BINARY_DIR}/rtl_faults/${name}/${file})
+  # Written only when it changes: the model built from it is not rebuilt at every configure.
+  set(old "")
+  if(EXISTS ${out})
+    file(READ ${out} old)
+  endif()
+  if(NOT old STREQUAL text)
+    file(WRITE ${out} "${text}")
+  endif()
+  set(list ${${sources}})
+  list(FIND list ${src} at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "fault ${name}: rtl/${file} is not among its sources")
+  endif()
+  list(REMOVE_AT list ${at})
+  list(INSERT list ${at} ${out})
+  set(${sources} ${list} PARENT_SCOPE)
+endfunction()

@@ -47,11 +47,7 @@ module index_fusion #(
   logic [LANES*B-1:0] sum;
 
   assign join_valid = a_valid_i && b_valid_i;   // both halves of the next beat are present
-`ifdef INTGRID_FAULT_READY_IN_RESET  // fault for the checkers' self-test: ready during reset
-  assign fire       = join_valid && join_ready;
-`else
   assign fire       = join_valid && join_ready && rst_ni; // the beat moves (never in reset): a and b consumed, sum buffered
-`endif
   assign a_ready_o  = fire;                     // a is taken only together with b
   assign b_ready_o  = fire;                     // b is taken only together with a
 

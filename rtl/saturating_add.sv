@@ -1,10 +1,6 @@
 // One lane of S_eps index fusion: y = a + b saturated to +-(2^(B-1) - 1), all three B-bit two's
 // complement. -2^(B-1) is a legal input (it saturates like any other out-of-range sum) but never an
 // output. Purely combinational; index_fusion registers its result.
-//
-// Fault injection, for the testbench's self-check only: with INTGRID_FAULT_SATURATION defined the
-// negative bound becomes -2^(B-1) (the natural two's-complement minimum) instead of
-// -(2^(B-1) - 1): a sum of exactly -2^(B-1) comes out unsaturated. Never define it in a real build.
 module saturating_add #(
   parameter int unsigned B = 8
 ) (
@@ -23,13 +19,7 @@ module saturating_add #(
   logic above, below, at_min;
   assign at_min = sum[B-2:0] == '0;                      // with sum[B:B-1] = 2'b11: sum = -2^(B-1)
   assign above  = !sum[B] && sum[B-1];                   // sum >= 2^(B-1): over +(2^(B-1) - 1)
-`ifndef INTGRID_FAULT_SATURATION
   assign below  = sum[B] && (!sum[B-1] || at_min);       // sum <= -2^(B-1): under -(2^(B-1) - 1)
-`else
-  assign below  = sum[B] && !sum[B-1];                   // the injected fault: sum < -2^(B-1) only
-  logic unused_at_min;
-  assign unused_at_min = at_min;
-`endif
 
   always_comb begin
     if (above) begin

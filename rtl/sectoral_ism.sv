@@ -108,13 +108,7 @@ module sectoral_ism #(
   always_ff @(posedge clk_i) begin
     out_of_reset_q <= rst_ni;
   end
-`ifdef INTGRID_FAULT_READY_IN_RESET  // fault for the checkers' self-test: ready during reset
-  assign z_ready_o = setup_idle && !full_q[wb_q];
-  logic unused_out_of_reset;
-  assign unused_out_of_reset = out_of_reset_q;
-`else
   assign z_ready_o = out_of_reset_q && setup_idle && !full_q[wb_q];  // out of reset, the engine is idle and its next bank is free
-`endif
   assign z_fire    = z_valid_i && z_ready_o;       // a reading is accepted
 
   logic              idx_we, idx_re;

@@ -2,8 +2,6 @@
 // max(a, b) + Phi(|a - b|), Phi from a ROM (log2(1 + 2^-d), zero past its last entry),
 // log 0 absorbing. A log value is {zero, LOG_W-bit two's complement}. Two-stage pipeline:
 // operands in cycle t, sum on res_o in cycle t + 2; one addition per cycle.
-// Defining SECTORAL_ISM_BUG_PHI reads Phi(d + 1) instead of Phi(d): the deliberately broken
-// variant the testbench must catch.
 module sectoral_ism_log_add #(
   parameter int unsigned LOG_W  = 20,
   parameter int unsigned PHI_N  = 2440,
@@ -39,11 +37,7 @@ module sectoral_ism_log_add #(
   assign diff_ba = {b_val[LOG_W-1], b_val} - {a_val[LOG_W-1], a_val};
   assign a_ge_b  = !diff_ab[LOG_W];
   assign distance    = a_ge_b ? diff_ab : diff_ba;
-`ifdef SECTORAL_ISM_BUG_PHI
-  assign phi_addr = distance[PHI_AW-1:0] + PHI_AW'(1);
-`else
   assign phi_addr = distance[PHI_AW-1:0];
-`endif
 
   logic             s1_valid_q, s1_bypass_q, s1_small_q;
   logic [LOG_W:0]   s1_pass_q;

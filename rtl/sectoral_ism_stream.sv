@@ -48,11 +48,7 @@ module sectoral_ism_stream #(
   logic              sp_ready;
 
   logic s1_advance, issue, last_cell, below, above;
-`ifdef INTGRID_FAULT_STREAM_BUBBLE  // fault for the checkers' self-test: an empty stage 1 waits for the spill register
-  assign s1_advance = sp_ready;
-`else
   assign s1_advance = !s1_valid_q || sp_ready;  // stage 1 is empty or its cell enters the spill register
-`endif
   assign issue      = full_i && s1_advance;     // read the next cell of the bank into stage 1
   assign last_cell  = (ring_q == RIDX_W'(RINGS - 1)) && (sec_q == J_W'(SECTORS - 1))
                    && (bin_q == BPS_W'(BPS - 1));
@@ -90,11 +86,7 @@ module sectoral_ism_stream #(
 
   always_ff @(posedge clk_i) begin
     if (issue) begin
-`ifdef INTGRID_FAULT_STREAM_LAST  // fault for the checkers' self-test: last on every bin of the last sector
-      s1_last_q      <= (ring_q == RIDX_W'(RINGS - 1)) && (sec_q == J_W'(SECTORS - 1));
-`else
       s1_last_q      <= last_cell;
-`endif
       s1_const_q     <= below || above;
       s1_const_idx_q <= below ? below_i : '0;
     end

@@ -18,18 +18,10 @@ module spill_register #(
   logic [WIDTH-1:0] a_data_q, b_data_q;
 
   logic a_fill, a_drain, b_fill, b_drain;
-`ifdef INTGRID_FAULT_SPILL_OVERWRITE  // fault for the checkers' self-test: a stalled beat is overwritten
-  assign a_fill  = valid_i && ready_o && !b_full_q;
-`else
   assign a_fill  = valid_i && ready_o && (!a_full_q || a_drain) && !b_full_q;  // input goes straight to a
-`endif
   assign a_drain = a_full_q && ready_i;                                        // a's beat leaves
   assign b_fill  = valid_i && ready_o && a_full_q && !a_drain;                 // a stalls: input parks in b
-`ifdef INTGRID_FAULT_SPILL_BUBBLE  // fault for the checkers' self-test: b waits a cycle after a drains
-  assign b_drain = b_full_q && !a_full_q;
-`else
   assign b_drain = b_full_q && (!a_full_q || a_drain);                         // b moves up into a
-`endif
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -51,15 +43,7 @@ module spill_register #(
     end
   end
 
-`ifdef INTGRID_FAULT_SPILL_REFUSE  // fault for the checkers' self-test: input refused while a is full
-  assign ready_o = !a_full_q;
-`else
-`ifdef INTGRID_FAULT_SPILL_REFUSE  // fault for the checkers' self-test: input refused while a is full
-  assign ready_o = !a_full_q;
-`else
   assign ready_o = !b_full_q;  // registered: room for one more beat whatever the output does
-`endif
-`endif
   assign valid_o = a_full_q;
   assign data_o  = a_data_q;
 

@@ -27,12 +27,12 @@ set(_fv_out ${CMAKE_CURRENT_BINARY_DIR}/formal)
 file(GLOB _fv_packages CONFIGURE_DEPENDS ${_fv_rtl}/*_pkg.sv)
 
 # intgrid_formal(NAME TOP top DEPTH k [INDUCTION] [COUNTEREXAMPLE] [PREPARE "yosys cmd"...]
-#                [PARAMS "-set P V ..."] [DEFINES D...] RTL files... HARNESS files...)
+#                [PARAMS "-set P V ..."] RTL files... HARNESS files...)
 # PREPARE runs on the RTL before the harness is read: chparam to the proof's parameters, and
 # expose of the registers that the induction ties to the reference.
 function(intgrid_formal name)
   cmake_parse_arguments(PARSE_ARGV 1 arg "INDUCTION;COUNTEREXAMPLE" "TOP;DEPTH;PARAMS"
-                        "PREPARE;DEFINES;RTL;HARNESS")
+                        "PREPARE;RTL;HARNESS")
   set(opts --dir ${_fv_out}/${name} --top ${arg_TOP} --depth ${arg_DEPTH})
   if(arg_INDUCTION)
     list(APPEND opts --induction)
@@ -46,63 +46,29 @@ function(intgrid_formal name)
   if(arg_PARAMS)
     list(APPEND opts --params "${arg_PARAMS}")
   endif()
-  foreach(d ${arg_DEFINES})
-    list(APPEND opts --define ${d})
-  endforeach()
   add_test(NAME ${name}
            COMMAND bash ${_fv_dir}/prove.sh ${opts} --rtl ${_fv_packages} ${arg_RTL}
                    --harness ${arg_HARNESS})
   set_tests_properties(${name} PROPERTIES LABELS formal TIMEOUT 300)
 endfunction()
 
-# intgrid_formal_fault(VAR file FROM text TO text): writes a copy of rtl/<file> with one fault
-# (the first FROM replaced by TO) into the build tree and sets VAR to its path, or to "" if FROM
-# is no longer in the file (the negative test then fails and says so).
-function(intgrid_formal_fault var file from to)
-  set(src ${_fv_rtl}/${file})
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${src})
-  file(READ ${src} text)
-  string(FIND "${text}" "${from}" at)
-  if(at EQUAL -1)
-    set(${var} "" PARENT_SCOPE)
-    return()
-  endif()
-  string(LENGTH "${from}" len)
-  string(SUBSTRING "${text}" 0 ${at} before)
-  math(EXPR after_at "${at} + ${len}")
-  string(SUBSTRING "${text}" ${after_at} -1 after)
-  string(MD5 tag "${from}${to}")
-  string(SUBSTRING ${tag} 0 8 tag)
-  get_filename_component(stem ${file} NAME_WE)
-  set(out ${_fv_out}/faults/${stem}_${tag}.sv)
-  file(WRITE ${out} "// ${file} with an injected fault (testbench/formal.cmake): `${from}` -> `${to}`\n")
-  file(APPEND ${out} "${before}${to}${after}")
-  set(${var} ${out} PARENT_SCOPE)
-endfunction()
-
-# A negative test: NAME must give a counterexample on the faulty copy. ARGN as for intgrid_formal,
-# with FAULT <file> "<from>" "<to>" first.
+# A negative test: NAME must give a counterexample with rtl/FILE faulty, FROM replaced by TO
+# (intgrid_rtl_fault). ARGN as for intgrid_formal.
 function(intgrid_formal_negative name fault_file from to)
-  intgrid_formal_fault(faulty ${fault_file} "${from}" "${to}")
-  if(NOT faulty)
-    add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} -E echo
-             "the injected fault `${from}` is no longer in rtl/${fault_file}: update formal.cmake")
-    set_tests_properties(${name} PROPERTIES LABELS formal WILL_FAIL TRUE)
-    return()
-  endif()
   cmake_parse_arguments(PARSE_ARGV 4 arg "" "" "RTL")
   set(rtl ${arg_RTL})
-  list(TRANSFORM rtl REPLACE "^${_fv_rtl}/${fault_file}$" "${faulty}")
+  intgrid_rtl_fault(rtl ${name} ${fault_file} "${from}" "${to}")
   intgrid_formal(${name} COUNTEREXAMPLE ${arg_UNPARSED_ARGUMENTS} RTL ${rtl})
 endfunction()
 
 # --- rtl/saturating_add.sv: all input pairs for B = 4, 8, 16 -----------------------------------
-set(_fv_sat RTL ${_fv_rtl}/saturating_add.sv
+set(_fv_sat TOP saturating_add_formal DEPTH 1
             HARNESS ${_fv_dir}/saturating_add_model.sv ${_fv_dir}/saturating_add_formal.sv)
-intgrid_formal(formal_saturating_add TOP saturating_add_formal DEPTH 1 ${_fv_sat})
-# The RTL's own fault switch (negative bound -2^(B-1)) must be caught.
-intgrid_formal(formal_saturating_add_fault_bound COUNTEREXAMPLE TOP saturating_add_formal DEPTH 1
-               DEFINES INTGRID_FAULT_SATURATION ${_fv_sat})
+intgrid_formal(formal_saturating_add ${_fv_sat} RTL ${_fv_rtl}/saturating_add.sv)
+# The negative bound -2^(B-1) (rtl_faults.cmake) must be caught.
+set(_fv_sat_fault ${_fv_rtl}/saturating_add.sv)
+intgrid_testbench_fault(_fv_sat_fault saturation_bound)
+intgrid_formal(formal_saturating_add_fault_bound COUNTEREXAMPLE ${_fv_sat} RTL ${_fv_sat_fault})
 
 # --- rtl/spill_register.sv: a 2-deep FIFO, unbounded ----------------------------------------------
 set(_fv_spill_expose a_full_q b_full_q a_data_q b_data_q)

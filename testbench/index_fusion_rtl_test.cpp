@@ -377,8 +377,8 @@ TEST(IndexFusionRtlAssertions, SourceBChangingAnOfferedBeatFails) {
   EXPECT_NE(log.find("b_source_holds"), std::string::npos) << log;
 }
 
-// The RTL built with INTGRID_FAULT_READY_IN_RESET and INTGRID_FAULT_SPILL_REFUSE: ready during
-// reset, and a beat refused while entry b is free, each fire their assertion.
+// The RTL with the faults fusion_ready_in_reset and spill_refuse (testbench/rtl_faults.cmake):
+// ready during reset, and a beat refused while entry b is free, each fire their assertion.
 TEST(IndexFusionRtlAssertions, ReadyInResetFiresReadyLowInReset) {
   Harness<Vindex_fusion_fault_protocol_b4_l1, 4, 1> dut("index_fusion_rtl_fault_ready");
   testing::internal::CaptureStdout();
@@ -404,7 +404,7 @@ TEST(IndexFusionRtlAssertions, RefusingSpillRegisterFiresJoinTakesBeat) {
   EXPECT_NE(log.find("join_takes_beat"), std::string::npos) << log;
 }
 
-// The checker's self-test: the RTL built with INTGRID_FAULT_SATURATION lets a sum of exactly
+// The checker's self-test: the RTL built with saturation_bound lets a sum of exactly
 // -2^(B-1) through unsaturated. Over the exhaustive run every lane meets each of the 129 pairs
 // with a + b = -128 once, so the scoreboard must report exactly 129 * LANES mismatching cells,
 // and nothing else.

@@ -103,7 +103,9 @@ foreach(_cfg ${_ism_configs})
   intgrid_lint_rtl(sectoral_ism_lint_${_cfg} sectoral_ism -f sectoral_ism.f
                    -f config/${_cfg}/sectoral_ism_${_cfg}.vc)
 endforeach()
-intgrid_lint_rtl(sectoral_ism_lint_broken sectoral_ism -DSECTORAL_ISM_BUG_PHI ${_ism_rtl_files})
+set(_ism_rtl_phi ${_ism_rtl})
+intgrid_testbench_fault(_ism_rtl_phi log_add_phi)
+intgrid_lint_rtl(sectoral_ism_lint_broken sectoral_ism ${_ism_rtl_phi})
 add_test(NAME sectoral_ism_lint_generated
          COMMAND verilator --lint-only -Wall --top-module sectoral_ism -F ${_ism_rtl_dir}/sectoral_ism.f
                  -f config/wide12/sectoral_ism_wide12.vc
@@ -172,41 +174,42 @@ gtest_discover_tests(hls_width_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
 
 if(INTGRID_HW_RTL_BENCHES)
 # --- The Verilated models: one per configuration, and the broken variants ----------------------
-# cone16_bug: Phi read one entry off; cone16_bubble: the output stream's stage 1 waits for the
-# spill register when empty (INTGRID_FAULT_STREAM_BUBBLE, a bubble at the start of a bank);
-# cone12_ready: z_ready not held low in reset (INTGRID_FAULT_READY_IN_RESET).
+# The faults of rtl_faults.cmake: cone16_bug: Phi read one entry off (log_add_phi);
+# cone16_bubble: the output stream's stage 1 waits for the spill register when empty
+# (stream_bubble, a bubble at the start of a bank); cone12_ready: z_ready not held low in reset
+# (ism_ready_in_reset).
 add_library(sectoral_ism_vmodels STATIC)
 add_dependencies(sectoral_ism_vmodels sectoral_ism_tables)
 set(_ism_vdirs "")
 foreach(_variant cone16 cone12 cone16_bug cone16_bubble cone12_ready)
   string(REGEX REPLACE "_.*" "" _cfg ${_variant})
   set(_args ${_ism_vargs_${_cfg}})
+  set(_rtl ${_ism_rtl})
   if(_variant MATCHES "_bug$")
-    list(APPEND _args -DSECTORAL_ISM_BUG_PHI)
+    intgrid_testbench_fault(_rtl log_add_phi)
   elseif(_variant MATCHES "_bubble$")
-    list(APPEND _args -DINTGRID_FAULT_STREAM_BUBBLE)
+    intgrid_testbench_fault(_rtl stream_bubble)
   elseif(_variant MATCHES "_ready$")
-    list(APPEND _args -DINTGRID_FAULT_READY_IN_RESET)
+    intgrid_testbench_fault(_rtl ism_ready_in_reset)
   endif()
   set(_vdir ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/${_variant})
-  verilate(sectoral_ism_vmodels SOURCES ${_ism_rtl} TOP_MODULE sectoral_ism
+  verilate(sectoral_ism_vmodels SOURCES ${_rtl} TOP_MODULE sectoral_ism
            PREFIX Vsectoral_ism_${_variant} DIRECTORY ${_vdir} TRACE_FST
            VERILATOR_ARGS ${_args} ${_ism_check} ${_ism_quiet})
   list(APPEND _ism_vdirs ${_vdir})
 endforeach()
 # The output stream alone (3 rings of 4 bins, 2 sectors), intact and with the faults that show
 # its checkers live: the stream's own bubble and last flag, the spill register's overwrite and bubble.
-foreach(_fault none STREAM_BUBBLE STREAM_LAST SPILL_OVERWRITE SPILL_BUBBLE)
-  string(TOLOWER ${_fault} _name)
-  set(_args -GRINGS=3 -GBINS=4 -GSECTORS=2 -GIDX_W=8)
-  if(NOT _fault STREQUAL none)
-    list(APPEND _args -DINTGRID_FAULT_${_fault})
+foreach(_name none stream_bubble stream_last spill_overwrite spill_bubble)
+  set(_rtl ${_ism_rtl_dir}/sectoral_ism_pkg.sv ${_ism_rtl_dir}/sectoral_ism_stream.sv
+           ${_ism_rtl_dir}/spill_register.sv)
+  if(NOT _name STREQUAL none)
+    intgrid_testbench_fault(_rtl ${_name})
   endif()
   set(_vdir ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/stream_${_name})
-  verilate(sectoral_ism_vmodels SOURCES ${_ism_rtl_dir}/sectoral_ism_pkg.sv ${_ism_rtl_dir}/sectoral_ism_stream.sv
-           ${_ism_rtl_dir}/spill_register.sv TOP_MODULE sectoral_ism_stream
+  verilate(sectoral_ism_vmodels SOURCES ${_rtl} TOP_MODULE sectoral_ism_stream
            PREFIX Vsectoral_ism_stream_${_name} DIRECTORY ${_vdir} TRACE_FST
-           VERILATOR_ARGS ${_args} ${_ism_check} ${_ism_quiet})
+           VERILATOR_ARGS -GRINGS=3 -GBINS=4 -GSECTORS=2 -GIDX_W=8 ${_ism_check} ${_ism_quiet})
   list(APPEND _ism_vdirs ${_vdir})
 endforeach()
 # Users of the models: Verilator's headers as system headers (the project's -Wconversion is not
@@ -241,12 +244,13 @@ set(_ism_sc_vdirs "")
 foreach(_variant cone16 cone12 cone16_bug)
   string(REPLACE "_bug" "" _cfg ${_variant})
   set(_args ${_ism_vargs_${_cfg}})
+  set(_rtl ${_ism_rtl})
   if(_variant MATCHES "_bug$")
-    list(APPEND _args -DSECTORAL_ISM_BUG_PHI)
+    intgrid_testbench_fault(_rtl log_add_phi)
   endif()
   set(_vdir ${CMAKE_CURRENT_BINARY_DIR}/sectoral_ism_v/sc_${_variant})
   verilate(sectoral_ism_sc_vmodels SYSTEMC
-           SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/sectoral_ism_cosim.vlt ${_ism_rtl}
+           SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/sectoral_ism_cosim.vlt ${_rtl}
            TOP_MODULE sectoral_ism PREFIX Vsectoral_ism_sc_${_variant} DIRECTORY ${_vdir}
            VERILATOR_ARGS ${_args} ${_ism_check} ${_ism_quiet})
   list(APPEND _ism_sc_vdirs ${_vdir})

@@ -27,7 +27,7 @@
 //   sectoral_ism_cosim <cone16|cone12|cone16_bug_phi> [seed] [--fault rtl_phi|sc_schedule]
 //                      [--bank-starts]
 // (without a seed: INTGRID_ISM_SEED, else 42).
-// cone16_bug_phi is the RTL built with SECTORAL_ISM_BUG_PHI. With --fault, the run must fail,
+// cone16_bug_phi is the RTL built with log_add_phi. With --fault, the run must fail,
 // and at the right cycle: rtl_phi, on the index RAM write data at the RTL's first index write
 // that differs from golden; sc_schedule (a build of this file with SECTORAL_ISM_SC_BUG_SCHEDULE:
 // one suffix cycle more in the model), on the write enable at the RTL's first index write.

@@ -243,7 +243,7 @@ TEST(SectoralIsmRtl, Cone12FullThroughput) {
   throughput<Vsectoral_ism_cone12, SectoralIsmCone12>();
 }
 
-// The broken variant (SECTORAL_ISM_BUG_PHI: the log-add reads Phi(d + 1)) must fail the
+// The broken variant (log_add_phi: the log-add reads Phi(d + 1)) must fail the
 // same checks that pass on the intact RTL.
 TEST(SectoralIsmRtl, BrokenVariantIsCaught) {
   const IsmKernelTables& k = kernel_of("cone16");
@@ -307,7 +307,7 @@ TEST(SectoralIsmRtl, Cone12BackToBackFollowsTheScheduleExactly) {
 // A bank written while the previous reading's last cells wait in the spill register, under
 // back-pressure: each reading (past reach, 2 set-up cycles) is offered only once at most 2 cells
 // of the one before are unsent. The intact RTL wastes no ready cycle; the fault
-// INTGRID_FAULT_STREAM_BUBBLE (an empty stage 1 waits for the spill register) does, and its
+// stream_bubble (an empty stage 1 waits for the spill register) does, and its
 // assertion fires.
 template <class Model>
 IsmBenchResult back_pressure_at_bank_starts(const char* what, std::string* log) {
@@ -358,7 +358,7 @@ TEST(SectoralIsmRtl, ReadyIsLowInReset) {
   EXPECT_FALSE(bench.assertion_failed());
 }
 
-// The RTL built with INTGRID_FAULT_READY_IN_RESET (z_ready without the out-of-reset flag) fails
+// The RTL with the fault ism_ready_in_reset (z_ready without the out-of-reset flag) fails
 // the reset assertion in the bench's first reset already.
 TEST(SectoralIsmRtlAssertions, ReadyInResetFiresReadyLowAfterResetEdge) {
   ::testing::internal::CaptureStdout();

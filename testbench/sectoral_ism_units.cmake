@@ -133,31 +133,13 @@ endforeach()
 
 # --- Injected faults -----------------------------------------------------------------------------
 # _units_fault(NAME UNIT FROM TO): rtl/sectoral_ism_<UNIT>.sv with the one occurrence of FROM
-# replaced by TO, Verilated for cone16 as V<unit>_fault_<NAME>. Configuration fails if FROM is not
-# found exactly once, so a fault never silently becomes the intact source.
+# replaced by TO (intgrid_rtl_fault), Verilated for cone16 as V<unit>_fault_<NAME>.
 function(_units_fault name unit from to)
-  set(_rtl ${_ism_rtl_dir}/sectoral_ism_${unit}.sv)
-  file(READ ${_rtl} _text)
-  string(FIND "${_text}" "${from}" _first)
-  string(FIND "${_text}" "${from}" _last REVERSE)
-  if(_first EQUAL -1 OR NOT _first EQUAL _last)
-    message(FATAL_ERROR "fault ${name}: '${from}' is not found exactly once in ${_rtl}")
-  endif()
-  string(REPLACE "${from}" "${to}" _text "${_text}")
-  set(_out ${_units_dir}/fault_${unit}_${name}/sectoral_ism_${unit}.sv)
-  set(_old "")
-  if(EXISTS ${_out})
-    file(READ ${_out} _old)
-  endif()
-  if(NOT _old STREQUAL _text)
-    file(WRITE ${_out} "${_text}")
-  endif()
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_rtl})
   set(_src ${_units_rtl_${unit}})
-  list(REMOVE_AT _src 0)
   list(TRANSFORM _src PREPEND ${_ism_rtl_dir}/)
+  intgrid_rtl_fault(_src ${unit}_${name} sectoral_ism_${unit}.sv "${from}" "${to}")
   _units_args(${unit} cone16 _args)
-  _units_verilate(V${unit}_fault_${name} sectoral_ism_${unit} SOURCES ${_out} ${_src} ARGS ${_args})
+  _units_verilate(V${unit}_fault_${name} sectoral_ism_${unit} SOURCES ${_src} ARGS ${_args})
 endfunction()
 # log 0 + log 0 computed as a finite sum (the bypass only when exactly one side is log 0).
 _units_fault(both_zero log_add "a_i[LOG_W] || b_i[LOG_W]" "a_i[LOG_W] ^ b_i[LOG_W]")
@@ -170,8 +152,9 @@ _units_fault(num_zero index "num_i[LOG_W] ? KindMin" "num_i[LOG_W] ? KindMax")
 # log 0 / log 0 not recognized: -MAX_INDEX instead of 0.
 _units_fault(both_zero index "(num_i[LOG_W] && den_i[LOG_W]) ? KindZero"
              "1'b0 ? KindZero")
-# The saturating adder's own fault switch (rtl/saturating_add.sv).
-_units_verilate(Vsaturating_add_fault_b8 saturating_add SOURCES ${_ism_rtl_dir}/saturating_add.sv
-                ARGS -GB=8 -DINTGRID_FAULT_SATURATION)
+# The saturating adder with its negative bound one off (rtl_faults.cmake).
+set(_units_sat_fault ${_ism_rtl_dir}/saturating_add.sv)
+intgrid_testbench_fault(_units_sat_fault saturation_bound)
+_units_verilate(Vsaturating_add_fault_b8 saturating_add SOURCES ${_units_sat_fault} ARGS -GB=8)
 
 gtest_discover_tests(sectoral_ism_units_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)

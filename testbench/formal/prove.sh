@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One bounded (or k-induction) proof of a formal harness with Yosys and yosys-smtbmc.
 #   prove.sh --dir DIR --top TOP --depth K [--induction] [--counterexample] [--solver S]
-#            [--define NAME]... [--prepare "YOSYS COMMAND"]... [--params "-set P V..."]
+#            [--prepare "YOSYS COMMAND"]... [--params "-set P V..."]
 #            --rtl FILE... --harness FILE...
 # Reads the RTL, runs the --prepare commands on it (chparam, expose), reads the harness, sets
 # its parameters (--params, given to chparam of TOP: the same values as the RTL's), writes
@@ -23,7 +23,6 @@ while (($# > 0)); do
     --solver) solver="$2"; shift 2 ;;
     --prepare) prepare+="$2; "; shift 2 ;;
     --params) params="$2"; shift 2 ;;
-    --define) defines+=("-D$2"); shift 2 ;;
     --induction) induction=1; shift ;;
     --counterexample) expect_cex=1; shift ;;
     --rtl) list=rtl; shift ;;
