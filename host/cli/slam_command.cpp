@@ -198,6 +198,11 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::SubmapSlamConf
     added.push_back(opt);
   };
   group = "Submaps engine: the submaps' S_eps grids";
+  c.threads = 0;  // the command uses every core unless told otherwise
+  add("--threads", c.threads,
+      "threads the loop-closure searches and a finished submap's matches run on (0: every core); "
+      "the same result for any count",
+      whole_range(0, 256));
   add("--submap-scans", c.submaps.scans,
       "nodes a submap takes before the next starts (each ends with twice as many)",
       whole_at_least(1));

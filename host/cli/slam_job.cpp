@@ -14,6 +14,7 @@
 #include "cli/log_input.hpp"
 #include "cli/output_folder_option.hpp"
 #include "cli/progress.hpp"
+#include "intgrid/core/parallel.hpp"
 #include "intgrid/figures/figure_layout.hpp"
 #include "intgrid/io/atomic_file.hpp"
 #include "intgrid/io/image_io.hpp"
@@ -350,7 +351,8 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                {"real_time_factor", r.seconds > 0.0 ? r.log_seconds / r.seconds : 0.0}};
   if (r.submap_stats) {
     const slam::SubmapSlamStats& s = *r.submap_stats;
-    r.metrics.update({{"nodes", s.nodes},
+    r.metrics.update({{"threads", core::threads_or_every_core(o.submap_config.threads)},
+                      {"nodes", s.nodes},
                       {"submaps", s.submaps},
                       {"wide_searches", s.wide_searches},
                       {"unmatched_scans", s.unmatched_scans},

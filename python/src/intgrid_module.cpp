@@ -1086,6 +1086,8 @@ void bind_submap_slam(py::module_& m) {
   config.def_readwrite("cell", &SubmapSlamConfig::cell, "submap cell (m)")
       .def_readwrite("headings", &SubmapSlamConfig::headings,
                      "heading steps per turn of the match lattice")
+      .def_readwrite("threads", &SubmapSlamConfig::threads,
+                     "threads of the back end's searches (0: every core); the same result")
       .def_readwrite("sensor", &SubmapSlamConfig::sensor)
       .def_readwrite("map", &SubmapSlamConfig::map)
       .def_readwrite("submaps", &SubmapSlamConfig::submaps)

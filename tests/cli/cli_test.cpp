@@ -769,6 +769,8 @@ TEST_F(Cli, SlamRefusesTheOtherEnginesOptionsAndBadSubmapValues) {
       {"--wide-below 1.5", "--wide-below"},
       {"--submap-scans 0", "--submap-scans"},
       {"--submap-rematch maybe", "--submap-rematch"},
+      {"--threads 300", "--threads"},
+      {"--engine grid --threads 2", "--threads: a setting of --engine submaps"},
       {"--engine grid --submap-rematch false", "--submap-rematch: a setting of --engine submaps"},
       {"--huber nan", "--huber"},
       {"--graph-iterations 2.5", "--graph-iterations"},

@@ -527,6 +527,31 @@ TEST(SubmapSlam, RunsAreBitIdentical) {
   EXPECT_EQ(a.map.cells, b.map.cells);
 }
 
+// The back end's searches on several threads (loop closures, a finished submap's nodes matched
+// again): the whole simulated loop, closures included, the same to the bit for 1, 2 and 3
+// threads (the double arithmetic runs the same code on its own cells).
+TEST(SubmapSlam, TheSameForAnyThreadCount) {
+  const core::Log& log = loop_run().log;
+  {
+    const core::Arithmetic arithmetic = core::Arithmetic::integer;
+    SubmapSlamConfig config;
+    SubmapSlamStats one_stats;
+    const SlamRun one = run_submap_slam(log, config, arithmetic, &one_stats);
+    ASSERT_GT(one_stats.loop_closures, 0u);  // the searches ran and found closures
+    for (const int threads : {2, 3}) {
+      config.threads = threads;
+      SubmapSlamStats stats;
+      const SlamRun run = run_submap_slam(log, config, arithmetic, &stats);
+      ASSERT_EQ(run.trajectory.size(), one.trajectory.size());
+      for (std::size_t i = 0; i < run.trajectory.size(); ++i)
+        ASSERT_EQ(run.trajectory[i].pose, one.trajectory[i].pose) << threads << " threads, " << i;
+      EXPECT_EQ(run.map.cells, one.map.cells) << threads;
+      EXPECT_EQ(stats.loop_closures, one_stats.loop_closures) << threads;
+      EXPECT_EQ(stats.rejected_closures, one_stats.rejected_closures) << threads;
+    }
+  }
+}
+
 // The online API needs no map size: a robot that drives 200 m straight down a long corridor.
 TEST(SubmapSlam, MapGrowsAsTheRobotDrivesAway) {
   core::Log log;
@@ -566,6 +591,16 @@ TEST(SubmapSlam, ConfigCheckNamesTheField) {
   c = {};
   c.headings = 1000;
   EXPECT_THROW(check_submap_slam_config(c), std::invalid_argument);
+  for (const int threads : {-1, 257}) {
+    c = {};
+    c.threads = threads;
+    try {
+      check_submap_slam_config(c);
+      FAIL() << "accepted " << threads << " threads";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("threads"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // Two look-alike corridors: A (y 1 to 3 m) and B (y 5 to 7 m), 30 m long, the same niches at the

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <list>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "intgrid/core/failure.hpp"
+#include "intgrid/core/parallel.hpp"
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/core/units.hpp"
@@ -97,6 +99,7 @@ void check_submap_slam_config(const SubmapSlamConfig& c) {
                 "must be in [0.005, 1] metres");
   require_field(std::abs(c.cell * 1000.0 - std::round(c.cell * 1000.0)) < 1e-6, "cell",
                 "must be a whole number of millimetres");
+  require_field(c.threads >= 0 && c.threads <= 256, "threads", "must be 0..256 (0: every core)");
   require_field(c.headings >= 64 && c.headings <= 16384 && (c.headings & (c.headings - 1)) == 0,
                 "headings", "must be a power of two from 64 to 16384");
   require_field(positive(c.sensor.sigma) && c.sensor.sigma >= 0.001 && c.sensor.sigma <= 1.0,
@@ -218,6 +221,7 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
   EngineOf(const SubmapSlamConfig& c, const core::SepsCodec& codec_, TrackerSetup setup)
       : tracker(std::move(setup), make_table<Cell>(c, codec_)) {
     config = c;
+    threads = core::threads_or_every_core(c.threads);
     codec = codec_;
     const TrackerSetup& s = tracker.setup();
     loop_window = search_window(c.loops.window, c.loops.window_degrees, 0.0, 0.0, s.cell_mm,
@@ -231,7 +235,10 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
   std::vector<ScanRecord> scans;
   SearchWindow loop_window;
   std::size_t pending_closures = 0, nodes_since_optimization = 0;
-  std::list<std::pair<std::size_t, MaxPyramid<Cell>>> pyramids;  // most recently used first
+  // Most recently used first; shared with the searches of one node, which may outlive their
+  // place in the cache.
+  std::list<std::pair<std::size_t, std::shared_ptr<const MaxPyramid<Cell>>>> pyramids;
+  int threads = 1;  // config.threads, 0 resolved
 
   // The local frame in the graph's: where the last node's local pose lands.
   core::Pose2 correction() const {
@@ -240,20 +247,20 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     return core::compose(graph.poses()[last.vertex], inverse(to_pose2(last.local)));
   }
 
-  const MaxPyramid<Cell>& pyramid_of(std::size_t id) {
+  std::shared_ptr<const MaxPyramid<Cell>> pyramid_of(std::size_t id) {
     for (auto it = pyramids.begin(); it != pyramids.end(); ++it)
       if (it->first == id) {
         pyramids.splice(pyramids.begin(), pyramids, it);
         return pyramids.front().second;
       }
-    pyramids.emplace_front(id,
-                           MaxPyramid<Cell>(*submaps[id].grid, pyramid_levels(loop_window.cells)));
+    pyramids.emplace_front(id, std::make_shared<const MaxPyramid<Cell>>(
+                                   *submaps[id].grid, pyramid_levels(loop_window.cells)));
     // Double cells take eight times the bytes of S_eps ones.
     std::size_t bytes = 0;
-    for (const auto& p : pyramids) bytes += p.second.bytes();
+    for (const auto& p : pyramids) bytes += p.second->bytes();
     while (pyramids.size() > 1 &&
            (pyramids.size() > kPyramidCacheSubmaps || bytes > kPyramidCacheBytes)) {
-      bytes -= pyramids.back().second.bytes();
+      bytes -= pyramids.back().second->bytes();
       pyramids.pop_back();
     }
     stats.peak_pyramid_bytes = std::max(stats.peak_pyramid_bytes, bytes);
@@ -278,17 +285,21 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     SubmapRecord& s = submaps[done.id];
     s.grid = std::move(done.grid);
     const TrackerSetup& setup = tracker.setup();
-    std::vector<ScanPoints> points;
+    std::vector<ScanPoints> points(s.nodes.size());
+    std::vector<std::optional<double>> own(s.nodes.size());  // none: too few hits
+    core::run_parts(s.nodes.size(), threads, [&](std::size_t j) {
+      const Node& n = nodes[s.nodes[j]];
+      points[j] = scan_points(tracker.rays(), *n.sensor, n.range_mm, setup.max_range_mm);
+      if (static_cast<int>(points[j].size()) < setup.min_hits) return;
+      const Match<Cell> at_pose =
+          match_exhaustive(*s.grid, tracker.rays(), points[j], n.local, SearchWindow{},
+                           setup.max_index, MatchScore<Cell>{});
+      own[j] = static_cast<double>(at_pose.evidence) /
+               (static_cast<double>(points[j].size()) * setup.max_index);
+    });
     std::vector<double> scores;
-    for (const std::size_t i : s.nodes) {
-      const Node& n = nodes[i];
-      points.push_back(scan_points(tracker.rays(), *n.sensor, n.range_mm, setup.max_range_mm));
-      if (static_cast<int>(points.back().size()) < setup.min_hits) continue;
-      const Match<Cell> own = match_exhaustive(*s.grid, tracker.rays(), points.back(), n.local,
-                                               SearchWindow{}, setup.max_index, MatchScore<Cell>{});
-      scores.push_back(static_cast<double>(own.evidence) /
-                       (static_cast<double>(points.back().size()) * setup.max_index));
-    }
+    for (const std::optional<double>& v : own)
+      if (v) scores.push_back(*v);
     if (scores.empty()) return;
     const auto middle = scores.begin() + static_cast<std::ptrdiff_t>(scores.size() / 2);
     std::nth_element(scores.begin(), middle, scores.end());
@@ -308,16 +319,20 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
         std::clamp<std::int64_t>(std::llround(s.own_score * 1000.0), 1, 1000);
     const std::size_t young =
         std::min(s.nodes.size(), static_cast<std::size_t>(config.submaps.scans));
-    for (std::size_t j = 0; j < young; ++j) {
-      if (static_cast<int>(points[j].size()) < setup.min_hits) continue;
+    std::vector<std::optional<SlamPose>> found(young);
+    core::run_parts(young, threads, [&](std::size_t j) {
+      if (static_cast<int>(points[j].size()) < setup.min_hits) return;
       const SlamPose& local = nodes[s.nodes[j]].local;
       const Match<Cell> lattice = match_exhaustive(*s.grid, tracker.rays(), points[j], local,
                                                    window, setup.max_index, MatchScore<Cell>{});
-      const Match<Cell> refined =
-          refine_match(*s.grid, tracker.rays(), points[j], local, window, setup.max_index, lattice);
-      graph.set_measurement(s.local_edges[j],
-                            core::relative(to_pose2(s.anchor), to_pose2(refined.pose)));
-    }
+      found[j] =
+          refine_match(*s.grid, tracker.rays(), points[j], local, window, setup.max_index, lattice)
+              .pose;
+    });
+    for (std::size_t j = 0; j < young; ++j)
+      if (found[j])
+        graph.set_measurement(s.local_edges[j],
+                              core::relative(to_pose2(s.anchor), to_pose2(*found[j])));
   }
 
   void add_node(const TrackStep& step, const QuantizedScan& scan,
@@ -383,12 +398,27 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     }
     std::sort(near.begin(), near.end());
     near.resize(std::min(near.size(), static_cast<std::size_t>(config.loops.submaps)));
+    // Each submap's search is set up here, run on the threads (they read the node's scan and
+    // their submap only), and its closure judged below in the submaps' order: the graph is the
+    // same for any thread count.
+    struct Search {
+      std::size_t id = 0;
+      SlamPose guess;
+      core::Pose2 guess_pose, from_tie;
+      double reach = 0.0;
+      SearchWindow window;
+      MatchScore<Cell> min_score{};
+      std::shared_ptr<const MaxPyramid<Cell>> pyramid;
+      Match<Cell> lattice, refined;
+      EvidenceCurvature<Cell> curvature;
+    };
+    std::vector<Search> searches;
     for (const auto& [distance2, id] : near) {
-      SubmapRecord& s = submaps[id];
+      const SubmapRecord& s = submaps[id];
       const core::Pose2 submap_pose = graph.poses()[s.vertex];
       const core::Pose2 guess_pose =
           core::compose(to_pose2(s.anchor), core::relative(submap_pose, global));
-      SlamPose guess = to_slam_pose(guess_pose);
+      const SlamPose guess = to_slam_pose(guess_pose);
       // A correct closure puts the node within what the front end can have drifted since the
       // trajectory was last tied to this submap (its own nodes or the latest closure to it); a
       // scan of a look-alike corridor matches a submap of its twin well, but metres away. Two
@@ -412,19 +442,38 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
       const double span = reach + std::hypot(from_tie.x - guess_pose.x, from_tie.y - guess_pose.y);
       window.cells = std::min(window.cells,
                               static_cast<int>(std::ceil(span * 1000.0 / tracker.setup().cell_mm)));
-      ++stats.loop_searches;
       const auto min_score = static_cast<MatchScore<Cell>>(
           std::llround(static_cast<double>(full) * config.loops.min_score * s.own_score));
-      const Match<Cell> lattice =
-          match_branch_and_bound(pyramid_of(id), tracker.rays(), points, guess, window,
-                                 tracker.setup().max_index, min_score);
-      if (!lattice.found) continue;
-      const Match<Cell> refined = refine_match(*s.grid, tracker.rays(), points, guess, window,
-                                               tracker.setup().max_index, lattice);
-      const core::Pose2 found = to_pose2(refined.pose);
-      const double jump = std::min(std::hypot(found.x - from_tie.x, found.y - from_tie.y),
-                                   std::hypot(found.x - guess_pose.x, found.y - guess_pose.y));
-      if (jump > reach) {
+      Search search;
+      search.id = id;
+      search.guess = guess;
+      search.guess_pose = guess_pose;
+      search.from_tie = from_tie;
+      search.reach = reach;
+      search.window = window;
+      search.min_score = min_score;
+      search.pyramid = pyramid_of(id);
+      searches.push_back(std::move(search));
+    }
+    const int max_index = tracker.setup().max_index;
+    core::run_parts(searches.size(), threads, [&](std::size_t i) {
+      Search& c = searches[i];
+      const LocalGrid<Cell>& grid = *submaps[c.id].grid;
+      c.lattice = match_branch_and_bound(*c.pyramid, tracker.rays(), points, c.guess, c.window,
+                                         max_index, c.min_score);
+      if (!c.lattice.found) return;
+      c.refined =
+          refine_match(grid, tracker.rays(), points, c.guess, c.window, max_index, c.lattice);
+      c.curvature = evidence_curvature(grid, tracker.rays(), points, c.refined.pose);
+    });
+    for (const Search& c : searches) {
+      SubmapRecord& s = submaps[c.id];
+      ++stats.loop_searches;
+      if (!c.lattice.found) continue;
+      const core::Pose2 found = to_pose2(c.refined.pose);
+      const double jump = std::min(std::hypot(found.x - c.from_tie.x, found.y - c.from_tie.y),
+                                   std::hypot(found.x - c.guess_pose.x, found.y - c.guess_pose.y));
+      if (jump > c.reach) {
         ++stats.rejected_closures;
         continue;
       }
@@ -433,8 +482,7 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
       // curvature as a fraction of the sharpest's (a match in a corridor fixes nothing along
       // it, and a full-weight closure would pin the node wherever noise put it); a match that
       // peaks in no direction is no closure.
-      const EvidenceCurvature<Cell> k =
-          evidence_curvature(*s.grid, tracker.rays(), points, refined.pose);
+      const EvidenceCurvature<Cell>& k = c.curvature;
       const double xx = static_cast<double>(k.xx), xy = static_cast<double>(k.xy),
                    yy = static_cast<double>(k.yy);
       const double spread = std::hypot(0.5 * (xx - yy), xy);
@@ -444,10 +492,10 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
         continue;
       }
       s.tied_node = nodes.size() - 1;
-      s.tied_pose = refined.pose;
+      s.tied_pose = c.refined.pose;
       optimization::Edge closure{s.vertex,
                                  node.vertex,
-                                 core::relative(to_pose2(s.anchor), to_pose2(refined.pose)),
+                                 core::relative(to_pose2(s.anchor), to_pose2(c.refined.pose)),
                                  config.loops.sigma_xy,
                                  radians(config.loops.sigma_degrees),
                                  true};
@@ -576,8 +624,11 @@ double pyramid_cache_bytes(const SubmapSlamConfig& config, core::Arithmetic arit
   const double cell_bytes = arithmetic == core::Arithmetic::integer ? 1.0 : sizeof(LogOdds);
   // The grid's own cells, then one byte a cell for each level above it (MaxPyramid).
   const double one = (cell_bytes + pyramid_levels(loops.cells)) * submap_cells;
+  // The cache, and the pyramids one node's searches hold while they run (loops.submaps of them,
+  // which the cache may have let go meanwhile).
   return std::min(static_cast<double>(kPyramidCacheSubmaps) * one,
-                  std::max(static_cast<double>(kPyramidCacheBytes), one));
+                  std::max(static_cast<double>(kPyramidCacheBytes), one)) +
+         static_cast<double>(config.loops.submaps) * one;
 }
 
 SubmapSlam::~SubmapSlam() = default;

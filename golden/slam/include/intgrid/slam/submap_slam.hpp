@@ -31,6 +31,9 @@ namespace intgrid::slam {
 struct SubmapSlamConfig {
   double cell = 0.05;   // submap cell (m), a whole number of millimetres
   int headings = 1024;  // heading steps per turn of the match lattice: a power of two, 64..16384
+  // Threads that the back end's searches run on (loop closures, a finished submap's nodes): 0
+  // for every core, at most 256. The result is the same, bit for bit, for any count.
+  int threads = 1;
 
   struct Sensor {
     // Range noise of the beam model the ISM is built on (m). The exact ISM raises the cells just
@@ -145,9 +148,9 @@ void check_submap_slam_config(const SubmapSlamConfig& config);
 inline constexpr std::size_t kPyramidCacheSubmaps = 12;
 inline constexpr std::size_t kPyramidCacheBytes = std::size_t{192} << 20;
 
-// The most bytes that cache can hold for submaps of submap_cells cells each (an upper figure
-// for a memory estimate: the levels' padding is left out, each level counted at the submap's
-// cells).
+// The most bytes that cache can hold for submaps of submap_cells cells each, with the
+// loops.submaps pyramids one node's searches hold while they run (an upper figure for a memory
+// estimate: the levels' padding is left out, each level counted at the submap's cells).
 double pyramid_cache_bytes(const SubmapSlamConfig& config, core::Arithmetic arithmetic,
                            double submap_cells);
 
