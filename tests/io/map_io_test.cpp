@@ -110,6 +110,22 @@ TEST(RosMap, AbsoluteImagePathIsUsedAsIs) {
   EXPECT_EQ(read_ros_map(dir.write("sub/map.yaml", yaml)).grid.geometry.width, 3);
 }
 
+// A file name with a control character (found by the fuzzer: a NUL in it cut the message that
+// named the image short) is refused where the YAML states it.
+TEST(RosMap, ImageNameWithAControlCharacterNamesTheYamlField) {
+  const TempDir dir;
+  dir.write("map.pgm", small_p5());
+  for (const std::string& name :
+       {std::string("map.pg0") + '\0' + "0i_0", std::string("map") + '\x01' + ".pgm"}) {
+    std::string yaml = map_yaml();
+    yaml.replace(yaml.find("map.pgm"), 7, name);
+    const auto path = dir.write("map.yaml", yaml);
+    const std::string message = expect_input_error([&] { read_ros_map(path); }, path, 1, "image");
+    EXPECT_THAT(message, HasSubstr("control character")) << message;
+    EXPECT_EQ(message.find('\0'), std::string::npos);
+  }
+}
+
 TEST(RosMap, ShortPixelDataNamesExpectedAndActualSizes) {
   const TempDir dir;
   const auto pgm = dir.write("map.pgm", std::string("P5\n3 2\n255\n") + "\x01\x02\x03\x04\x05");

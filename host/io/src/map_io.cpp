@@ -124,6 +124,12 @@ fs::path read_image_path(const MapYaml& yaml) {
   const YAML::Node node = yaml.required("image");
   const fs::path image = yaml.text(node, "image");
   if (image.empty()) yaml.fail(node, "image", "must name the image file (PGM or PNG)");
+  // A file name with a control character (a NUL would cut every message naming the file short)
+  // is no file a map was written with.
+  const std::string name = image.string();
+  if (std::any_of(name.begin(), name.end(),
+                  [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }))
+    yaml.fail(node, "image", "holds a control character: " + quote_input(name));
   return image.is_absolute() ? image : yaml.file().parent_path() / image;
 }
 
