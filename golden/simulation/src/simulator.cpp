@@ -19,11 +19,9 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kSqrt2 = std::numbers::sqrt2;
 
-// ---- Validation helpers: one message naming the field.
+// ---- Validation helpers: one message naming the field (core::fail_field).
 
-[[noreturn]] void invalid_field(const std::string& field, const std::string& message) {
-  core::fail<std::invalid_argument>(field + ": " + message);
-}
+using core::fail_field;
 
 std::string number(double v) {
   if (std::isnan(v)) return "nan";
@@ -34,26 +32,26 @@ std::string number(double v) {
 
 void require_positive(double v, const char* field) {
   if (!(v > 0.0) || !std::isfinite(v))
-    invalid_field(field, "must be a positive finite number, got " + number(v));
+    fail_field(field, "must be a positive finite number, got " + number(v));
 }
 
 void require_non_negative(double v, const char* field) {
   if (!(v >= 0.0) || !std::isfinite(v))
-    invalid_field(field, "must be a finite number >= 0, got " + number(v));
+    fail_field(field, "must be a finite number >= 0, got " + number(v));
 }
 
 void require_probability(double v, const char* field) {
   if (!(v >= 0.0 && v <= 1.0))
-    invalid_field(field, "must be a probability in [0, 1], got " + number(v));
+    fail_field(field, "must be a probability in [0, 1], got " + number(v));
 }
 
 void require_finite(double v, const char* field) {
-  if (!std::isfinite(v)) invalid_field(field, "must be finite, got " + number(v));
+  if (!std::isfinite(v)) fail_field(field, "must be finite, got " + number(v));
 }
 
 void require_finite_pose(const core::Pose2& p, const std::string& field) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta))
-    invalid_field(field, "must have finite x, y and theta");
+    fail_field(field, "must have finite x, y and theta");
 }
 
 std::uint64_t rotl(std::uint64_t x, int k) {
@@ -248,27 +246,25 @@ void check_floorplan_config(const FloorplanConfig& c) {
   require_positive(c.corridor, "floorplan.corridor");
   require_positive(c.door, "floorplan.door");
   require_positive(c.room_length, "floorplan.room_length");
-  if (c.furniture > 1000) invalid_field("floorplan.furniture", "must be at most 1000");
+  if (c.furniture > 1000) fail_field("floorplan.furniture", "must be at most 1000");
   const double cells = std::ceil(c.width / c.cell) * std::ceil(c.height / c.cell);
   if (!(cells <= 1e8))
-    invalid_field("floorplan.cell", "gives more than 10^8 cells for " + number(c.width) + " x " +
-                                        number(c.height) + " m");
-  if (c.door < 3.0 * c.cell) invalid_field("floorplan.door", "must be at least 3 cells wide");
-  if (c.corridor < 4.0 * c.cell)
-    invalid_field("floorplan.corridor", "must be at least 4 cells wide");
-  if (c.wall >= c.room_depth) invalid_field("floorplan.wall", "must be thinner than room_depth");
+    fail_field("floorplan.cell", "gives more than 10^8 cells for " + number(c.width) + " x " +
+                                     number(c.height) + " m");
+  if (c.door < 3.0 * c.cell) fail_field("floorplan.door", "must be at least 3 cells wide");
+  if (c.corridor < 4.0 * c.cell) fail_field("floorplan.corridor", "must be at least 4 cells wide");
+  if (c.wall >= c.room_depth) fail_field("floorplan.wall", "must be thinner than room_depth");
   const double inner = 2.0 * (c.room_depth + 3.0 * c.wall + c.corridor) + 1.0;
   if (c.width < inner || c.height < inner)
-    invalid_field(
-        "floorplan.width",
-        "the floor must be at least 2 (room_depth + 3 wall + corridor) + 1 = " + number(inner) +
-            " m in width and height, for rooms, the corridor and an inner block of 1 m");
+    fail_field("floorplan.width",
+               "must be at least 2 (room_depth + 3 wall + corridor) + 1 = " + number(inner) +
+                   " m, and so must the height, for rooms, the corridor and an inner block of 1 m");
   const double need = c.wall + c.door + 2.0 * kDoorMargin;
   if (0.75 * c.room_length < need)
-    invalid_field("floorplan.room_length",
-                  "must be at least (wall + door + 0.3) / 0.75 = " + number(need / 0.75) + " m");
+    fail_field("floorplan.room_length",
+               "must be at least (wall + door + 0.3) / 0.75 = " + number(need / 0.75) + " m");
   if (c.room_depth - c.wall < c.door + 2.0 * kDoorMargin)
-    invalid_field("floorplan.room_depth", "too shallow for a door");
+    fail_field("floorplan.room_depth", "is too shallow for a door");
 }
 
 Floorplan make_floorplan(const FloorplanConfig& c, std::uint64_t seed) {
@@ -420,16 +416,15 @@ core::ProbabilityGrid procedural_floorplan(const FloorplanConfig& c, std::uint64
 // Trajectory
 
 void check_trajectory_config(const TrajectoryConfig& c) {
-  if (c.scans == 0) invalid_field("trajectory.scans", "must be at least 1");
-  if (c.scans > 10'000'000) invalid_field("trajectory.scans", "must be at most 10^7");
+  if (c.scans == 0) fail_field("trajectory.scans", "must be at least 1");
+  if (c.scans > 10'000'000) fail_field("trajectory.scans", "must be at most 10^7");
   require_positive(c.scan_period, "trajectory.scan_period");
   require_positive(c.speed, "trajectory.speed");
   require_positive(c.turn_rate, "trajectory.turn_rate");
   require_non_negative(c.robot_radius, "trajectory.robot_radius");
   require_non_negative(c.min_leg, "trajectory.min_leg");
   if (!(c.free_threshold > 0.0 && c.free_threshold <= 1.0))
-    invalid_field("trajectory.free_threshold",
-                  "must be in (0, 1], got " + number(c.free_threshold));
+    fail_field("trajectory.free_threshold", "must be in (0, 1], got " + number(c.free_threshold));
 }
 
 namespace {
@@ -522,12 +517,12 @@ std::vector<core::Pose2> follow_route(const std::vector<Point2>& route, bool clo
                                       const TrajectoryConfig& c) {
   check_trajectory_config(c);
   for (const Point2& p : route)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) invalid_field("route", "points must be finite");
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) fail_field("route", "points must be finite");
   std::size_t second = 1;
   while (second < route.size() && route[second].x == route[0].x && route[second].y == route[0].y)
     ++second;
   if (route.empty() || second == route.size())
-    invalid_field("route", "must hold at least two distinct points");
+    fail_field("route", "must hold at least two distinct points");
   std::vector<core::Pose2> poses;
   poses.reserve(c.scans);
   RouteSampler sampler(c, poses);
@@ -834,19 +829,19 @@ SensorConfig cone_ring_sensor(std::size_t cones, double cone_fov, double max_ran
 }
 
 void check_sensor_config(const SensorConfig& c) {
-  if (c.beams == 0) invalid_field("sensor.beams", "must be at least 1");
-  if (c.beams > 100000) invalid_field("sensor.beams", "must be at most 100000");
+  if (c.beams == 0) fail_field("sensor.beams", "must be at least 1");
+  if (c.beams > 100000) fail_field("sensor.beams", "must be at most 100000");
   require_finite(c.angle0, "sensor.angle0");
   require_finite(c.dangle, "sensor.dangle");
   require_positive(c.max_range, "sensor.max_range");
   require_finite_pose(c.mount, "sensor.mount");
   if (!(c.occupied_threshold > 0.0 && c.occupied_threshold <= 1.0))
-    invalid_field("sensor.occupied_threshold",
-                  "must be in (0, 1], got " + number(c.occupied_threshold));
+    fail_field("sensor.occupied_threshold",
+               "must be in (0, 1], got " + number(c.occupied_threshold));
   if (c.kind == SensorKind::cone) {
     if (!(c.cone_fov > 0.0 && c.cone_fov < kPi))
-      invalid_field("sensor.cone_fov", "must be in (0, pi) rad, got " + number(c.cone_fov));
-    if (c.rays_per_cone > 100000) invalid_field("sensor.rays_per_cone", "must be at most 100000");
+      fail_field("sensor.cone_fov", "must be in (0, pi) rad, got " + number(c.cone_fov));
+    if (c.rays_per_cone > 100000) fail_field("sensor.rays_per_cone", "must be at most 100000");
   }
 }
 
@@ -1001,11 +996,11 @@ core::Scan simulate_scan(const core::ProbabilityGrid& world, const SensorConfig&
 // Unmodelled obstacles
 
 void check_obstacle_config(const ObstacleConfig& c) {
-  if (c.count > 1'000'000) invalid_field("obstacles.count", "must be at most 10^6");
+  if (c.count > 1'000'000) fail_field("obstacles.count", "must be at most 10^6");
   require_positive(c.min_diameter, "obstacles.min_diameter");
   require_positive(c.max_diameter, "obstacles.max_diameter");
   if (c.min_diameter > c.max_diameter)
-    invalid_field("obstacles.min_diameter", "must not exceed max_diameter");
+    fail_field("obstacles.min_diameter", "must not exceed max_diameter");
   require_non_negative(c.clearance, "obstacles.clearance");
   if (c.large_distance) {
     require_non_negative(*c.large_distance, "obstacles.large_distance");
@@ -1025,7 +1020,7 @@ std::vector<Disc> place_obstacles(const core::ProbabilityGrid& world,
     for (std::size_t i = 0; i < g.size(); ++i)
       if (is_free(world.cells[i], free_threshold)) free_cells.push_back(i);
     if (free_cells.empty())
-      invalid_field("obstacles.count", "the world has no free cell to put them in");
+      fail_field("obstacles.count", "cannot be placed: the world has no free cell");
     const double half_diagonal = 0.5 * kSqrt2 * g.resolution;
     for (std::size_t k = 0; k < c.count; ++k) {
       bool placed = false;
@@ -1054,14 +1049,13 @@ std::vector<Disc> place_obstacles(const core::ProbabilityGrid& world,
         placed = true;
       }
       if (!placed)
-        invalid_field("obstacles.count",
-                      "only " + std::to_string(discs.size()) + " of " + std::to_string(c.count) +
-                          " obstacles fit in free space away from the trajectory");
+        fail_field("obstacles.count", "cannot be placed: only " + std::to_string(discs.size()) +
+                                          " of " + std::to_string(c.count) +
+                                          " obstacles fit in free space away from the trajectory");
     }
   }
   if (c.large_distance) {
-    if (truth.empty())
-      invalid_field("obstacles.large_distance", "needs a true pose to measure from");
+    if (truth.empty()) fail_field("obstacles.large_distance", "needs a true pose to measure from");
     const core::Pose2& p = truth.front();
     const double r = 0.5 * c.large_diameter;
     const double reach = *c.large_distance + r;
@@ -1085,14 +1079,14 @@ void check_simulation_config(const SimulationConfig& c) {
   check_range_noise(c.noise);
   check_obstacle_config(c.obstacles);
   require_finite(c.start_time, "start_time");
-  if (c.true_poses.size() > 10'000'000) invalid_field("true_poses", "must hold at most 10^7 poses");
+  if (c.true_poses.size() > 10'000'000) fail_field("true_poses", "must hold at most 10^7 poses");
   for (std::size_t i = 0; i < c.true_poses.size(); ++i)
     require_finite_pose(c.true_poses[i], "true_poses[" + std::to_string(i) + "]");
   for (const Point2& p : c.route)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) invalid_field("route", "points must be finite");
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) fail_field("route", "points must be finite");
   if (c.trajectory.free_threshold > c.sensor.occupied_threshold)
-    invalid_field("trajectory.free_threshold",
-                  "must not exceed sensor.occupied_threshold (free cells would stop rays)");
+    fail_field("trajectory.free_threshold",
+               "must not exceed sensor.occupied_threshold (free cells would stop rays)");
 }
 
 Simulation simulate(const core::ProbabilityGrid& world, const SimulationConfig& c,

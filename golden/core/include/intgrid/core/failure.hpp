@@ -19,10 +19,15 @@ template <class Error>
 #endif
 }
 
-// Throws std::invalid_argument "FIELD WHAT" unless ok: how a configuration check names the field
-// at fault by its path ("loops.window must be > 0").
+// Throws std::invalid_argument "FIELD WHAT": how a configuration check names the field at fault
+// by its path ("loops.window must be > 0").
+[[noreturn]] inline void fail_field(const std::string& field, const std::string& what) {
+  fail<std::invalid_argument>(field + " " + what);
+}
+
+// fail_field(field, what) unless ok.
 inline void require_field(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) fail<std::invalid_argument>(field + " " + what);
+  if (!ok) fail_field(field, what);
 }
 
 // A number as failure messages print it: six significant digits ("0.05", "1e+09").
