@@ -67,41 +67,37 @@ int bearing_shift(double bearing, double bin, int headings) {
 }  // namespace
 
 void check_global_loc_config(const GlobalLocConfig& c) {
+  using core::require_field;
   const auto positive = [](double v, const char* name) {
-    if (!finite_positive(v))
-      core::fail<std::invalid_argument>(std::string(name) + " must be a positive finite number");
+    require_field(finite_positive(v), name, "must be a positive finite number");
   };
   const auto weight = [](double v, const char* name) {
-    if (!(v >= 0.0) || !std::isfinite(v))
-      core::fail<std::invalid_argument>(std::string(name) +
-                                        " must be a non-negative finite number");
+    require_field(v >= 0.0 && std::isfinite(v), name, "must be a non-negative finite number");
   };
   positive(c.pose_res, "pose_res");
-  if (c.headings < 4 || c.headings > 4096)
-    core::fail<std::invalid_argument>("headings must be 4..4096, got " +
-                                      std::to_string(c.headings));
+  require_field(c.headings >= 4 && c.headings <= 4096, "headings",
+                "must be 4..4096, got " + std::to_string(c.headings));
   positive(c.sigma, "sigma");
-  if (c.sigma > 1.0) core::fail<std::invalid_argument>("sigma must be at most 1 metre");
+  require_field(c.sigma <= 1.0, "sigma", "must be at most 1 metre");
   positive(c.max_range, "max_range");
-  if (c.seps_bits < 2 || c.seps_bits > 16)
-    core::fail<std::invalid_argument>("seps_bits must be 2..16, got " +
-                                      std::to_string(c.seps_bits));
-  if (c.seps_levels < 1 || c.seps_levels > core::max_index_for_bits(c.seps_bits))
-    core::fail<std::invalid_argument>("seps_levels must be 1.." +
-                                      std::to_string(core::max_index_for_bits(c.seps_bits)) +
-                                      ", got " + std::to_string(c.seps_levels));
-  if (c.veto_levels < 0 || c.veto_levels > c.seps_levels)
-    core::fail<std::invalid_argument>("veto_levels must be 0..seps_levels, got " +
-                                      std::to_string(c.veto_levels));
+  require_field(c.seps_bits >= 2 && c.seps_bits <= 16, "seps_bits",
+                "must be 2..16, got " + std::to_string(c.seps_bits));
+  require_field(c.seps_levels >= 1 && c.seps_levels <= core::max_index_for_bits(c.seps_bits),
+                "seps_levels",
+                "must be 1.." + std::to_string(core::max_index_for_bits(c.seps_bits)) + ", got " +
+                    std::to_string(c.seps_levels));
+  require_field(c.veto_levels >= 0 && c.veto_levels <= c.seps_levels, "veto_levels",
+                "must be 0..seps_levels, got " + std::to_string(c.veto_levels));
   positive(c.z_hit, "z_hit");
   weight(c.z_short, "z_short");
   weight(c.z_max, "z_max");
   weight(c.z_rand, "z_rand");
   positive(c.lambda_short, "lambda_short");
-  if (c.refine_levels < 0 || c.refine_levels > 8 || (c.headings << c.refine_levels) > 65536)
-    core::fail<std::invalid_argument>(
-        "refine_levels must be 0..8 and keep headings x 2^levels at most 65536, got " +
-        std::to_string(c.refine_levels));
+  require_field(
+      c.refine_levels >= 0 && c.refine_levels <= 8 && (c.headings << c.refine_levels) <= 65536,
+      "refine_levels",
+      "must be 0..8 and keep headings x 2^levels at most 65536, got " +
+          std::to_string(c.refine_levels));
 }
 
 std::vector<RangeReading> readings_of(const core::Scan& scan, int beams, double max_range) {
