@@ -77,8 +77,8 @@ int thread_count(const MapJobOptions& o) {
 
 // The job's large allocations, estimated before any is made: the grid (the probabilities, the
 // integer path's indices, the image and the PGM's bytes) and the ISM of the longest reading
-// (in double, and in the integer path quantized once per millimetre of range, which the
-// inserter keeps), once for each thread.
+// (in double, and in the integer path quantized once per bin of range, core::ism_range_bin as
+// the inserter counts them, which it keeps), once for each thread.
 void require_memory_for(const core::Log& log, const core::GridGeometry& geometry,
                         const MapJobOptions& o) {
   const double cells = static_cast<double>(geometry.width) * geometry.height;
@@ -90,25 +90,25 @@ void require_memory_for(const core::Log& log, const core::GridGeometry& geometry
                      " m over what the log saw (" + option_number(geometry.width * o.resolution) +
                      " x " + option_number(geometry.height * o.resolution) + " m)");
   double longest = 0.0;
-  std::set<long long> millimetres;  // the integer inserter's ISM per millimetre of range
+  std::set<long long> bins;  // the integer inserter's ISM per bin of range
   for (const core::Scan& scan : log.scans)
     for (const double z : scan.ranges)
       if (core::classify_range(z, scan.max_range) == core::RangeClass::valid) {
         longest = std::max(longest, z);
-        if (index_bytes > 0.0) millimetres.insert(std::llround(z * 1000.0));
+        if (index_bytes > 0.0) bins.insert(core::ism_range_bin(z, core::kIsmRangeStep));
       }
   const double ism_cells = std::ceil((longest + 8.0 * o.model.sigma(longest)) / o.resolution);
-  const double ism_bytes =
-      ism_cells * (sizeof(double) + static_cast<double>(millimetres.size()) * index_bytes) *
-      thread_count(o);
+  const double ism_bytes = ism_cells *
+                           (sizeof(double) + static_cast<double>(bins.size()) * index_bytes) *
+                           thread_count(o);
   const auto metres = [](double v) { return io::printed("%.3g m", v); };
   require_memory(ism_bytes, o.max_memory_bytes, o.model.k_d * longest > 1.0 ? "--k-d" : "--sigma",
                  "the ISM of the log's longest reading (" + metres(longest) +
                      ", spread over 8 sigma = " + metres(8.0 * o.model.sigma(longest)) + ") in " +
                      metres(o.resolution) + " cells" +
-                     (index_bytes > 0.0 ? ", kept for each distinct range (" +
-                                              std::to_string(millimetres.size()) + "),"
-                                        : ""));
+                     (index_bytes > 0.0
+                          ? ", kept for each distinct range (" + std::to_string(bins.size()) + "),"
+                          : ""));
 }
 
 // The grid's rows cut into `count` bands of about as many scans' sensor positions each (a

@@ -55,7 +55,7 @@ IndexScanInserter<Index>::IndexScanInserter(const GaussianBeamModel& model, doub
 
 template <class Index>
 const std::vector<Index>& IndexScanInserter<Index>::beam_indices(double z) {
-  const long long bin = std::llround(z / z_step_);
+  const long long bin = ism_range_bin(z, z_step_);
   std::vector<Index>& indices = beams_[bin];
   if (!indices.empty()) return indices;
   const double zq = static_cast<double>(bin) * z_step_;

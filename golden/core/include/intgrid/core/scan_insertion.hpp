@@ -3,6 +3,7 @@
 // probabilities (Bayesian fusion, double) or as S_eps indices (integer addition).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <unordered_map>
@@ -90,14 +91,24 @@ void insert_scan(ProbabilityGrid& grid, const Scan& scan, const GaussianBeamMode
 // through a cell like one hit on it.
 enum class VetoBound { none, strongest_claim };
 
+// The step of the reading values an integer inserter keeps one quantized ISM for: 1 mm, the
+// resolution of the logs.
+inline constexpr double kIsmRangeStep = 0.001;
+
+// The bin a reading of z metres falls in, for ISMs kept every z_step metres: round(z / z_step).
+// The inserter and any estimate of how many ISMs it will keep count bins alike.
+inline long long ism_range_bin(double z, double z_step) {
+  return std::llround(z / z_step);
+}
+
 // Integer insertion. The exact ISM of each reading is quantized (conservatively)
-// to S_eps indices once per reading value, on a grid of z_step metres (1 mm:
-// the resolution of the logs), and then applied by saturating index addition.
+// to S_eps indices once per reading value, on a grid of z_step metres, and then applied by
+// saturating index addition.
 template <class Index>
 class IndexScanInserter {
  public:
   IndexScanInserter(const GaussianBeamModel& model, double cell, const SepsCodec& codec,
-                    VetoBound veto = VetoBound::none, double z_step = 0.001);
+                    VetoBound veto = VetoBound::none, double z_step = kIsmRangeStep);
 
   // Into the cells of the rows `rows`. Requires grid resolution == cell.
   void insert(Grid<Index>& grid, const Scan& scan, InsertionStats& stats, RowBand rows = {});
