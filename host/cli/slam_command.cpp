@@ -198,11 +198,6 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::SubmapSlamConf
     added.push_back(opt);
   };
   group = "Submaps engine: the submaps' S_eps grids";
-  c.threads = 0;  // the command uses every core unless told otherwise
-  add("--threads", c.threads,
-      "threads the loop-closure searches and a finished submap's matches run on (0: every core); "
-      "the same result for any count",
-      whole_range(0, 256));
   add("--submap-scans", c.submaps.scans,
       "nodes a submap takes before the next starts (each ends with twice as many)",
       whole_at_least(1));
@@ -281,6 +276,11 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::SubmapSlamConf
       "nodes between optimizations that have new loop closures", whole_at_least(1));
   add("--graph-iterations", c.graph.iterations, "iterations of an optimization", whole_at_least(1));
   add("--huber", c.graph.huber, "the robust loss's Huber width (sigmas)", positive());
+  group = "Submaps engine: threads";
+  add("--threads", c.threads,
+      "threads the loop-closure searches and a finished submap's matches run on (0: every core); "
+      "the same result for any count",
+      whole_range(0, 256));
   return added;
 }
 
@@ -335,6 +335,7 @@ void add_slam_command(CLI::App& app) {
     grid_only.erase(std::find(grid_only.begin(), grid_only.end(), opt));
   }
   for (CLI::Option* opt : grid_only) opt->group(kGridGroup);
+  o->submap_config.threads = 0;  // the command uses every core unless told otherwise
   const std::vector<CLI::Option*> submaps_only = add_submap_options(*cmd, o->submap_config);
 
   cmd->callback([o, cmd, engine, shared, grid_only, submaps_only] {

@@ -403,7 +403,6 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     // same for any thread count.
     struct Search {
       std::size_t id = 0;
-      SlamPose guess;
       core::Pose2 guess_pose, from_tie;
       double reach = 0.0;
       SearchWindow window;
@@ -418,7 +417,6 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
       const core::Pose2 submap_pose = graph.poses()[s.vertex];
       const core::Pose2 guess_pose =
           core::compose(to_pose2(s.anchor), core::relative(submap_pose, global));
-      const SlamPose guess = to_slam_pose(guess_pose);
       // A correct closure puts the node within what the front end can have drifted since the
       // trajectory was last tied to this submap (its own nodes or the latest closure to it); a
       // scan of a look-alike corridor matches a submap of its twin well, but metres away. Two
@@ -446,7 +444,6 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
           std::llround(static_cast<double>(full) * config.loops.min_score * s.own_score));
       Search search;
       search.id = id;
-      search.guess = guess;
       search.guess_pose = guess_pose;
       search.from_tie = from_tie;
       search.reach = reach;
@@ -459,11 +456,11 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     core::run_parts(searches.size(), threads, [&](std::size_t i) {
       Search& c = searches[i];
       const LocalGrid<Cell>& grid = *submaps[c.id].grid;
-      c.lattice = match_branch_and_bound(*c.pyramid, tracker.rays(), points, c.guess, c.window,
+      const SlamPose guess = to_slam_pose(c.guess_pose);
+      c.lattice = match_branch_and_bound(*c.pyramid, tracker.rays(), points, guess, c.window,
                                          max_index, c.min_score);
       if (!c.lattice.found) return;
-      c.refined =
-          refine_match(grid, tracker.rays(), points, c.guess, c.window, max_index, c.lattice);
+      c.refined = refine_match(grid, tracker.rays(), points, guess, c.window, max_index, c.lattice);
       c.curvature = evidence_curvature(grid, tracker.rays(), points, c.refined.pose);
     });
     for (const Search& c : searches) {
