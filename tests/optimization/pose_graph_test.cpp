@@ -201,16 +201,23 @@ TEST(PoseGraph, BadInitialGuessConverges) {
   EXPECT_LT(to_reference.xy, 1e-6);
 }
 
-// (c) Three nodes with a known answer: node 1 pinned by one edge, node 2 measured twice from
-// node 1 with equal sigmas, so it lands at the two measurements' midpoint in node 1's frame.
-TEST(PoseGraph, ConflictingMeasurementsAverage) {
+// Three nodes: node 1 pinned by one edge from node 0, node 2 measured twice from node 1 with
+// equal sigmas, first at (1, 0, 0.1), then at `second`.
+PoseGraph three_nodes(const Pose2& second) {
   PoseGraph graph;
   graph.add_node({0.0, 0.0, 0.0});
   graph.add_node({0.8, 0.3, 1.2});
   graph.add_node({1.0, 2.5, 2.0});
   graph.add_edge({0, 1, {1.0, 0.0, kPi / 2.0}, 0.1, 0.05});
   graph.add_edge({1, 2, {1.0, 0.0, 0.1}, 0.2, 0.1});
-  graph.add_edge({1, 2, {1.2, 0.2, 0.3}, 0.2, 0.1});
+  graph.add_edge({1, 2, second, 0.2, 0.1});
+  return graph;
+}
+
+// (c) Three nodes with a known answer: node 2 lands at its two measurements' midpoint in node
+// 1's frame.
+TEST(PoseGraph, ConflictingMeasurementsAverage) {
+  PoseGraph graph = three_nodes({1.2, 0.2, 0.3});
   const OptimizeSummary summary = graph.optimize();
   const Pose2 node1{1.0, 0.0, kPi / 2.0};
   const Pose2 node2 = compose(node1, {1.1, 0.1, 0.2});
@@ -231,16 +238,6 @@ TEST(PoseGraph, ConflictingMeasurementsAverage) {
 // measurement replaced by the first's value, so both agree and node 2 lands on it with no cost
 // left; a graph built with the value from the start gives the same poses.
 TEST(PoseGraph, AMeasurementTakenAgainReplacesTheFirst) {
-  const auto three_nodes = [](const Pose2& second) {
-    PoseGraph graph;
-    graph.add_node({0.0, 0.0, 0.0});
-    graph.add_node({0.8, 0.3, 1.2});
-    graph.add_node({1.0, 2.5, 2.0});
-    graph.add_edge({0, 1, {1.0, 0.0, kPi / 2.0}, 0.1, 0.05});
-    graph.add_edge({1, 2, {1.0, 0.0, 0.1}, 0.2, 0.1});
-    graph.add_edge({1, 2, second, 0.2, 0.1});
-    return graph;
-  };
   PoseGraph again = three_nodes({1.2, 0.2, 0.3});
   again.set_measurement(2, {1.0, 0.0, 0.1});
   EXPECT_EQ(again.edge_list()[2].measured.x, 1.0);
