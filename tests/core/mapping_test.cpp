@@ -62,6 +62,51 @@ TEST(Footprint, BeamsPartitionTheDiscAndFollowTheBearing) {
   }
 }
 
+// The footprint's definition, cell by cell over the whole grid (brute force): the walk, which
+// tests only the columns its row set-up names, must visit exactly these cells with these k, for
+// sectors from a hundredth of a degree to nearly half a turn, sensors inside and outside the
+// grid, and bands of rows.
+TEST(Footprint, VisitsExactlyTheCellsItsDefinitionNames) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const GridGeometry grid{97, 83, 0.05, -2.1, -1.7};
+  for (int trial = 0; trial < 400; ++trial) {
+    const Vec2 sensor{-3.0 + 6.0 * unit(rng), -3.0 + 6.0 * unit(rng)};
+    const double start = 2.0 * std::numbers::pi * unit(rng);
+    const double angle =
+        trial % 7 == 0 ? 3.1 * unit(rng) : std::pow(10.0, -4.0 + 4.4 * unit(rng));  // radians
+    const Vec2 from = unit_vector(start), to = unit_vector(start + angle);
+    const auto cells = static_cast<std::size_t>(1 + unit(rng) * 120.0);
+    RowBand rows;
+    if (trial % 3 == 0) {
+      rows.first = static_cast<int>(unit(rng) * grid.height);
+      rows.last = rows.first + static_cast<int>(unit(rng) * 30.0);
+    }
+    std::vector<std::size_t> visited(grid.size(), 0);
+    for_each_footprint_cell(
+        grid, sensor, from, to, 0.05, cells,
+        [&](std::size_t index, std::size_t k) {
+          ASSERT_EQ(visited[index], 0u) << "visited twice";
+          visited[index] = k;
+        },
+        rows);
+    const Vec2 mid{from.x + to.x, from.y + to.y};
+    const double reach = (static_cast<double>(cells) + 0.5) * 0.05;
+    for (int iy = 0; iy < grid.height; ++iy)
+      for (int ix = 0; ix < grid.width; ++ix) {
+        const Vec2 v{grid.centre_x(ix) - sensor.x, grid.centre_y(iy) - sensor.y};
+        std::size_t k = 0;
+        if (iy >= rows.first && iy <= rows.last && cross(from, v) >= 0.0 && cross(to, v) < 0.0 &&
+            dot(mid, v) > 0.0 && v.x * v.x + v.y * v.y < reach * reach) {
+          k = static_cast<std::size_t>(std::sqrt(v.x * v.x + v.y * v.y) * (1.0 / 0.05) + 0.5);
+          if (k > cells) k = 0;
+        }
+        ASSERT_EQ(visited[grid.index(ix, iy)], k)
+            << "trial " << trial << " cell " << ix << "," << iy;
+      }
+  }
+}
+
 Scan one_scan(const std::vector<double>& ranges, Pose2 robot) {
   Scan scan;
   scan.robot = robot;

@@ -33,61 +33,122 @@ struct RowBand {
   int last = std::numeric_limits<int>::max();
 };
 
+namespace footprint_detail {
+
+// The positions along one grid line (a row, or a column in transposed coordinates) that a
+// half-plane side * cross(d, u) >= 0 keeps, u the cell centre's offset from the sensor in the
+// line's coordinates (along, across): u.along >= bound (a lower bound), <= bound (an upper bound),
+// all of them or none, with bound = across * d.x / d.y. Set up once a footprint, so that a line
+// costs one multiplication.
+class HalfPlaneSpan {
+ public:
+  HalfPlaneSpan(Vec2 d, double side)
+      : slope_(d.y != 0.0 ? d.x / d.y : 0.0), a_(-side * d.y), b_per_across_(side * d.x) {}
+  // Narrows [lo, hi] to the half-plane on the line at `across`.
+  void clip(double across, double& lo, double& hi) const {
+    if (a_ > 0.0)
+      lo = std::max(lo, across * slope_);
+    else if (a_ < 0.0)
+      hi = std::min(hi, across * slope_);
+    else if (b_per_across_ * across < 0.0)
+      hi = -std::numeric_limits<double>::infinity();  // the line lies wholly outside
+  }
+
+ private:
+  double slope_;
+  double a_;             // a * along + b >= 0,
+  double b_per_across_;  // with b = b_per_across * across
+};
+
+inline Vec2 transposed(Vec2 v) {
+  return {v.y, v.x};
+}
+
+}  // namespace footprint_detail
+
 // Calls visit(cell_index, k) once for every grid cell of the rows `rows` whose centre c satisfies
 //   cross(from, c - sensor) >= 0 and cross(to, c - sensor) < 0 (the half-open
 //   angular interval [from, to), `to` counter-clockwise of `from` by less than pi),
 //   and 1 <= round(|c - sensor| / cell) = k <= cells.
 // Adjacent beams share a boundary vector, so every cell falls in exactly one.
-// The interval of vx satisfying side * (d.x * vy - d.y * vx) >= 0 for one row,
-// widened to [lo, hi]: the half-plane left (side 1) or right (side -1) of d.
-inline void clip_to_half_plane(Vec2 d, double vy, double side, double& lo, double& hi) {
-  const double a = -side * d.y, b = side * d.x * vy;  // a * vx + b >= 0
-  if (a > 0.0)
-    lo = std::max(lo, -b / a);
-  else if (a < 0.0)
-    hi = std::min(hi, -b / a);
-  else if (b < 0.0)
-    hi = lo - 1.0;  // the row lies wholly outside
-}
-
+//
+// The sector is walked line by line across its length: rows for a beam closer to the x axis,
+// columns for one closer to the y axis, so that a line holds as many of its cells as it can. A
+// line's candidate cells come from the sector's edges (one multiplication each) and, only where
+// the sector's end reaches the line, the disc's chord (a square root); they are widened by a hair
+// against rounding, and the exact test above decides every candidate, so the cells visited do not
+// depend on the walk. Most lines of a narrow beam hold a few cells: their set-up is what a beam
+// costs.
 template <class Visit>
 void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 to, double cell,
                              std::size_t cells, Visit&& visit, RowBand rows = {}) {
+  using footprint_detail::HalfPlaneSpan;
+  using footprint_detail::transposed;
   const Vec2 mid{from.x + to.x, from.y + to.y};
   const double reach = (static_cast<double>(cells) + 0.5) * cell;
   const double reach_sq = reach * reach;
   const double inv_cell = 1.0 / cell;
+  const auto test = [&](int ix, int iy, Vec2 v) {
+    if (cross(from, v) < 0.0 || cross(to, v) >= 0.0 || dot(mid, v) <= 0.0) return;
+    const double rho_sq = v.x * v.x + v.y * v.y;
+    if (rho_sq >= reach_sq) return;
+    const auto k = static_cast<std::size_t>(std::sqrt(rho_sq) * inv_cell + 0.5);
+    if (k >= 1 && k <= cells) visit(grid.index(ix, iy), k);
+  };
   // The sector lies in the triangle sensor, sensor + far from, sensor + far to,
-  // with far the reach over the cosine of the half angle: its rows bound the loop.
+  // with far the reach over the cosine of the half angle: its rows and columns bound the walk.
   const double far = reach / std::sqrt(std::max(0.5 * (1.0 + dot(from, to)), 1e-12));
-  const double y_lo = sensor.y + far * std::min({0.0, from.y, to.y});
-  const double y_hi = sensor.y + far * std::max({0.0, from.y, to.y});
-  const int row_lo = std::max({0, grid.cell_y(y_lo) - 1, rows.first});
-  const int row_hi = std::min({grid.height - 1, grid.cell_y(y_hi) + 1, rows.last});
-  for (int iy = row_lo; iy <= row_hi; ++iy) {
-    const double vy = grid.centre_y(iy) - sensor.y;
-    if (vy * vy >= reach_sq) continue;
-    // The row's candidate cells: those whose centres lie in the intersection of
-    // the disc and the three half-planes, widened by a hair against rounding;
-    // the exact test below decides, with the same arithmetic for every beam.
-    const double half_chord = std::sqrt(reach_sq - vy * vy);
-    double lo = -half_chord, hi = half_chord;
-    clip_to_half_plane(from, vy, 1.0, lo, hi);
-    clip_to_half_plane(to, vy, -1.0, lo, hi);
-    clip_to_half_plane({-mid.y, mid.x}, vy, -1.0, lo, hi);
-    const double hair = 1e-9 * reach;
-    const double first = std::ceil((sensor.x + lo - hair - grid.origin_x) / grid.resolution - 0.5);
-    const double last = std::floor((sensor.x + hi + hair - grid.origin_x) / grid.resolution - 0.5);
-    if (first > last) continue;
-    const int col_lo = static_cast<int>(std::max(first, 0.0));
-    const int col_hi = static_cast<int>(std::min(last, grid.width - 1.0));
-    for (int ix = col_lo; ix <= col_hi; ++ix) {
-      const Vec2 v{grid.centre_x(ix) - sensor.x, vy};
-      if (cross(from, v) < 0.0 || cross(to, v) >= 0.0 || dot(mid, v) <= 0.0) continue;
-      const double rho_sq = v.x * v.x + v.y * v.y;
-      if (rho_sq >= reach_sq) continue;
-      const auto k = static_cast<std::size_t>(std::sqrt(rho_sq) * inv_cell + 0.5);
-      if (k >= 1 && k <= cells) visit(grid.index(ix, iy), k);
+  const int row_lo =
+      std::max({0, grid.cell_y(sensor.y + far * std::min({0.0, from.y, to.y})) - 1, rows.first});
+  const int row_hi =
+      std::min({grid.height - 1, grid.cell_y(sensor.y + far * std::max({0.0, from.y, to.y})) + 1,
+                rows.last});
+  const int col_lo = std::max(0, grid.cell_x(sensor.x + far * std::min({0.0, from.x, to.x})) - 1);
+  const int col_hi =
+      std::min(grid.width - 1, grid.cell_x(sensor.x + far * std::max({0.0, from.x, to.x})) + 1);
+  if (row_lo > row_hi || col_lo > col_hi) return;
+  const bool along_rows = std::abs(mid.x) >= std::abs(mid.y);
+  // In the line's coordinates (along, across): v itself along rows, v transposed along columns,
+  // where cross changes sign and so each half-plane its side.
+  const double side = along_rows ? 1.0 : -1.0;
+  const auto line = [&](Vec2 d) { return along_rows ? d : transposed(d); };
+  const HalfPlaneSpan from_side(line(from), side), to_side(line(to), -side),
+      front(line({-mid.y, mid.x}), -side);
+  const Vec2 s = line(sensor);
+  const Vec2 origin = line({grid.origin_x, grid.origin_y});
+  const double hair = 1e-9 * reach;
+  const double inv_resolution = 1.0 / grid.resolution;
+  // The position of offset `along` in cells, less one half: the cell centred there is its ceil.
+  const double position_of_sensor = (s.x - origin.x) * inv_resolution - 0.5;
+  const int line_first = along_rows ? row_lo : col_lo, line_last = along_rows ? row_hi : col_hi;
+  const int pos_first = along_rows ? col_lo : row_lo, pos_last = along_rows ? col_hi : row_hi;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int l = line_first; l <= line_last; ++l) {
+    const double across = origin.y + (l + 0.5) * grid.resolution - s.y;
+    const double chord_sq = reach_sq - across * across;  // (half the disc's chord here)^2
+    if (chord_sq <= 0.0) continue;
+    double lo = -inf, hi = inf;
+    from_side.clip(across, lo, hi);
+    to_side.clip(across, lo, hi);
+    front.clip(across, lo, hi);
+    if (!(lo <= hi)) continue;
+    if (lo * lo > chord_sq || hi * hi > chord_sq) {
+      const double half_chord = std::sqrt(chord_sq);
+      lo = std::max(lo, -half_chord);
+      hi = std::min(hi, half_chord);
+    }
+    // Clamped before the conversion to int, so that far-off sectors cannot overflow it.
+    const double first = std::clamp(std::ceil(position_of_sensor + (lo - hair) * inv_resolution),
+                                    static_cast<double>(pos_first), pos_last + 1.0);
+    const double last = std::clamp(std::floor(position_of_sensor + (hi + hair) * inv_resolution),
+                                   pos_first - 1.0, static_cast<double>(pos_last));
+    const int p_hi = static_cast<int>(last);
+    if (along_rows) {
+      for (int ix = static_cast<int>(first); ix <= p_hi; ++ix)
+        test(ix, l, {grid.centre_x(ix) - sensor.x, across});
+    } else {
+      for (int iy = static_cast<int>(first); iy <= p_hi; ++iy)
+        test(l, iy, {across, grid.centre_y(iy) - sensor.y});
     }
   }
 }
