@@ -27,17 +27,21 @@ void insert_scan(ProbabilityGrid& grid, const Scan& scan, const GaussianBeamMode
   const double cell = grid.geometry.resolution;
   const Pose2 pose = scan.sensor_pose();
   std::vector<double> ism;
+  double* const cells = grid.cells.data();
+  std::size_t updated = 0;
   for_each_valid_beam(scan, stats, [&](double z, Vec2 from, Vec2 to) {
     ism.resize(ism_cells_for_reading(model, z, cell));
     narrow_ism(model, z, cell, ism);
+    const double* const beam = ism.data();
     for_each_footprint_cell(
         grid.geometry, {pose.x, pose.y}, from, to, cell, ism.size(),
         [&](std::size_t index, std::size_t k) {
-          grid.cells[index] = fuse_probabilities(grid.cells[index], ism[k - 1]);
-          ++stats.cells_updated;
+          cells[index] = fuse_probabilities(cells[index], beam[k - 1]);
+          ++updated;
         },
         rows);
   });
+  stats.cells_updated += updated;
 }
 
 template <class Index>
@@ -91,17 +95,20 @@ void IndexScanInserter<Index>::insert(Grid<Index>& grid, const Scan& scan, Inser
     fail<std::invalid_argument>("the grid's resolution differs from the inserter's cell size");
   const Pose2 pose = scan.sensor_pose();
   const int max_index = codec_.max_index();
+  Index* const cells = grid.cells.data();
+  std::size_t updated = 0;  // local: the cells' byte stores could alias a member
   for_each_valid_beam(scan, stats, [&](double z, Vec2 from, Vec2 to) {
     const std::vector<Index>& indices = beam_indices(z);
-    Index* cells = grid.cells.data();
+    const Index* const ism = indices.data();
     for_each_footprint_cell(
         grid.geometry, {pose.x, pose.y}, from, to, cell_, indices.size(),
         [&](std::size_t index, std::size_t k) {
-          cells[index] = fuse_indices(cells[index], indices[k - 1], max_index);
-          ++stats.cells_updated;
+          cells[index] = fuse_indices(cells[index], ism[k - 1], max_index);
+          ++updated;
         },
         rows);
   });
+  stats.cells_updated += updated;
 }
 
 template class IndexScanInserter<std::int8_t>;

@@ -76,8 +76,8 @@ inline Vec2 transposed(Vec2 v) {
 // columns for one closer to the y axis, so that a line holds as many of its cells as it can. A
 // line's candidate cells come from the sector's edges (one multiplication each) and, only where
 // the sector's end reaches the line, the disc's chord (a square root); they are widened by a hair
-// against rounding, and the exact test above decides every candidate, so the cells visited do not
-// depend on the walk. Most lines of a narrow beam hold a few cells: their set-up is what a beam
+// against rounding; the exact test above then decides the run's two ends, so the cells visited do
+// not depend on the walk. Most lines of a narrow beam hold a few cells: their set-up is what a beam
 // costs.
 template <class Visit>
 void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 to, double cell,
@@ -88,11 +88,15 @@ void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, V
   const double reach = (static_cast<double>(cells) + 0.5) * cell;
   const double reach_sq = reach * reach;
   const double inv_cell = 1.0 / cell;
-  const auto test = [&](int ix, int iy, Vec2 v) {
-    if (cross(from, v) < 0.0 || cross(to, v) >= 0.0 || dot(mid, v) <= 0.0) return;
-    const double rho_sq = v.x * v.x + v.y * v.y;
-    if (rho_sq >= reach_sq) return;
-    const auto k = static_cast<std::size_t>(std::sqrt(rho_sq) * inv_cell + 0.5);
+  // Inside the sector and the disc. Along a line each of its four comparisons changes at most
+  // once (an offset that grows with the position, times a constant, less a constant: rounding
+  // keeps the order), so the cells of a line that pass it are one run.
+  const auto inside = [&](Vec2 v) {
+    return cross(from, v) >= 0.0 && cross(to, v) < 0.0 && dot(mid, v) > 0.0 &&
+           v.x * v.x + v.y * v.y < reach_sq;
+  };
+  const auto take = [&](int ix, int iy, Vec2 v) {
+    const auto k = static_cast<std::size_t>(std::sqrt(v.x * v.x + v.y * v.y) * inv_cell + 0.5);
     if (k >= 1 && k <= cells) visit(grid.index(ix, iy), k);
   };
   // The sector lies in the triangle sensor, sensor + far from, sensor + far to,
@@ -142,13 +146,17 @@ void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, V
                                     static_cast<double>(pos_first), pos_last + 1.0);
     const double last = std::clamp(std::floor(position_of_sensor + (hi + hair) * inv_resolution),
                                    pos_first - 1.0, static_cast<double>(pos_last));
-    const int p_hi = static_cast<int>(last);
+    int p_lo = static_cast<int>(first), p_hi = static_cast<int>(last);
     if (along_rows) {
-      for (int ix = static_cast<int>(first); ix <= p_hi; ++ix)
-        test(ix, l, {grid.centre_x(ix) - sensor.x, across});
+      const auto v = [&](int ix) { return Vec2{grid.centre_x(ix) - sensor.x, across}; };
+      while (p_lo <= p_hi && !inside(v(p_lo))) ++p_lo;
+      while (p_hi > p_lo && !inside(v(p_hi))) --p_hi;
+      for (int ix = p_lo; ix <= p_hi; ++ix) take(ix, l, v(ix));
     } else {
-      for (int iy = static_cast<int>(first); iy <= p_hi; ++iy)
-        test(l, iy, {across, grid.centre_y(iy) - sensor.y});
+      const auto v = [&](int iy) { return Vec2{across, grid.centre_y(iy) - sensor.y}; };
+      while (p_lo <= p_hi && !inside(v(p_lo))) ++p_lo;
+      while (p_hi > p_lo && !inside(v(p_hi))) --p_hi;
+      for (int iy = p_lo; iy <= p_hi; ++iy) take(l, iy, v(iy));
     }
   }
 }
