@@ -1,4 +1,5 @@
-// The subcommands of `intgrid`; each runs from its parse callback.
+// The subcommands of `intgrid`, one file each (NAME_command.cpp); each runs from its parse
+// callback. What they share is in command_common.cpp.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -6,6 +7,7 @@
 
 #include "cli/map_job.hpp"
 #include "cli/options.hpp"
+#include "intgrid/core/map_compare.hpp"
 #include "intgrid/core/sectoral_ism.hpp"
 #include "intgrid/localization/global_localization.hpp"
 #include "intgrid/slam/grid_slam_engine.hpp"
@@ -48,5 +50,11 @@ CLI::Option* add_arithmetic_option(CLI::App& cmd, core::Arithmetic& arithmetic,
 void check_grid_options(const core::SectoralGrid& grid, bool kernel);
 // Throws OptionError unless the reading --z is a finite distance >= 0.
 void check_reading_option(double z);
+// The sensor model and the integer set (--sigma, --k-d, --bits, --levels, --eps, --veto-bound),
+// shared by map and demo.
+void add_model_options(CLI::App& cmd, MapJobOptions& o);
+// An insertion's counts, and a map's agreement with a reference map, as JSON.
+nlohmann::json stats_json(const core::InsertionStats& s);
+nlohmann::json agreement_json(const core::MapAgreement& a);
 
 }  // namespace intgrid::cli
