@@ -63,14 +63,14 @@ TEST(Footprint, BeamsPartitionTheDiscAndFollowTheBearing) {
 }
 
 // The footprint's definition, cell by cell over the whole grid (brute force): the walk, which
-// tests only the columns its row set-up names, must visit exactly these cells with these k, for
-// sectors from a hundredth of a degree to nearly half a turn, sensors inside and outside the
-// grid, and bands of rows.
+// tests only the ends of the runs its lines' set-up names, must visit exactly these cells with
+// these k, for sectors from a hundredth of a degree to nearly half a turn, sensors inside and
+// outside the grid, bands of rows, and with or without an inner radius.
 TEST(Footprint, VisitsExactlyTheCellsItsDefinitionNames) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const GridGeometry grid{97, 83, 0.05, -2.1, -1.7};
-  for (int trial = 0; trial < 400; ++trial) {
+  for (int trial = 0; trial < 800; ++trial) {
     const Vec2 sensor{-3.0 + 6.0 * unit(rng), -3.0 + 6.0 * unit(rng)};
     const double start = 2.0 * std::numbers::pi * unit(rng);
     const double angle =
@@ -82,6 +82,16 @@ TEST(Footprint, VisitsExactlyTheCellsItsDefinitionNames) {
       rows.first = static_cast<int>(unit(rng) * grid.height);
       rows.last = rows.first + static_cast<int>(unit(rng) * 30.0);
     }
+    const double reach = (static_cast<double>(cells) + 0.5) * 0.05;
+    // No inner radius, a random one, or one through a cell's centre (a tie the walk must break
+    // as the definition does).
+    double inner_sq = 0.0;
+    if (trial % 4 == 1) inner_sq = std::pow(unit(rng) * reach, 2);
+    if (trial % 4 == 3) {
+      const Vec2 v{grid.centre_x(static_cast<int>(unit(rng) * grid.width)) - sensor.x,
+                   grid.centre_y(static_cast<int>(unit(rng) * grid.height)) - sensor.y};
+      inner_sq = v.x * v.x + v.y * v.y;
+    }
     std::vector<std::size_t> visited(grid.size(), 0);
     for_each_footprint_cell(
         grid, sensor, from, to, 0.05, cells,
@@ -89,15 +99,15 @@ TEST(Footprint, VisitsExactlyTheCellsItsDefinitionNames) {
           ASSERT_EQ(visited[index], 0u) << "visited twice";
           visited[index] = k;
         },
-        rows);
+        rows, inner_sq);
     const Vec2 mid{from.x + to.x, from.y + to.y};
-    const double reach = (static_cast<double>(cells) + 0.5) * 0.05;
     for (int iy = 0; iy < grid.height; ++iy)
       for (int ix = 0; ix < grid.width; ++ix) {
         const Vec2 v{grid.centre_x(ix) - sensor.x, grid.centre_y(iy) - sensor.y};
         std::size_t k = 0;
         if (iy >= rows.first && iy <= rows.last && cross(from, v) >= 0.0 && cross(to, v) < 0.0 &&
-            dot(mid, v) > 0.0 && v.x * v.x + v.y * v.y < reach * reach) {
+            dot(mid, v) > 0.0 && v.x * v.x + v.y * v.y < reach * reach &&
+            v.x * v.x + v.y * v.y >= inner_sq) {
           k = static_cast<std::size_t>(std::sqrt(v.x * v.x + v.y * v.y) * (1.0 / 0.05) + 0.5);
           if (k > cells) k = 0;
         }
@@ -195,6 +205,64 @@ TEST(ScanInsertion, BandsOfRowsFilledApartGiveTheWholeGrid) {
     insert_scans(banded_p, scans, model, stats, band);
   }
   EXPECT_EQ(banded_p.cells, whole_p.cells);
+}
+
+// The integer inserter fills a group of beams' common core in runs and each beam's cells beyond
+// it apart; the grid must be the one its definition gives, each valid beam's footprint fused
+// beam by beam in the scan's order (for_each_footprint_cell, checked cell by cell above), with
+// the same count of cells: scans turning either way, of 90 to 400 beams over up to more than a
+// whole turn (those overlap: fused in order), with invalid readings, sensors in and off the
+// grid, cells driven to saturation, and bands of rows.
+TEST(ScanInsertion, IntegerInsertionIsEachBeamsFootprintFusedInOrder) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const GridGeometry geometry{180, 150, 0.05, -4.0, -3.5};
+  const GaussianBeamModel model{0.03, 0.005};
+  const SepsCodec codec(8, 0.03);
+  IndexScanInserter<std::int8_t> inserter(model, 0.05, codec, VetoBound::strongest_claim);
+  IndexScanInserter<std::int8_t> exact(model, 0.05, codec);
+  Grid<std::int8_t> grid(geometry, 0), reference(geometry, 0);
+  std::size_t saturated = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    IndexScanInserter<std::int8_t>& ins = trial % 5 == 4 ? exact : inserter;
+    Scan scan;
+    scan.robot = {-4.5 + 9.0 * unit(rng), -4.0 + 8.0 * unit(rng), 7.0 * unit(rng)};
+    scan.sensor_mount = {0.1, 0.0, 0.0};
+    const auto beams = static_cast<std::size_t>(90 + unit(rng) * 310);
+    const double fov = (trial % 6 == 0 ? 2.05 : 1.9 * unit(rng) + 0.05) * std::numbers::pi;
+    scan.dangle = (trial % 2 == 0 ? 1.0 : -1.0) * fov / static_cast<double>(beams);
+    scan.angle0 = -0.5 * fov * (trial % 2 == 0 ? 1.0 : -1.0);
+    scan.max_range = 6.0;
+    for (std::size_t i = 0; i < beams; ++i) {
+      const double u = unit(rng);
+      scan.ranges.push_back(u < 0.05 ? 0.0 : u < 0.1 ? 7.0 : std::round(200 + u * 5500) * 0.001);
+    }
+    RowBand rows;
+    if (trial % 4 == 3)
+      rows = {static_cast<int>(unit(rng) * 100), 100 + static_cast<int>(unit(rng) * 60)};
+    InsertionStats stats, reference_stats;
+    ins.insert(grid, scan, stats, rows);
+    std::size_t updated = 0;
+    for_each_valid_beam(scan, reference_stats, [&](double z, Vec2 from, Vec2 to) {
+      const std::vector<std::int8_t> indices = ins.beam_indices(z);
+      const Pose2 pose = scan.sensor_pose();
+      for_each_footprint_cell(
+          geometry, {pose.x, pose.y}, from, to, 0.05, indices.size(),
+          [&](std::size_t index, std::size_t k) {
+            reference.cells[index] =
+                fuse_indices(reference.cells[index], indices[k - 1], codec.max_index());
+            ++updated;
+          },
+          rows);
+    });
+    ASSERT_EQ(grid.cells, reference.cells) << "trial " << trial;
+    ASSERT_EQ(stats.cells_updated, updated) << "trial " << trial;
+    ASSERT_EQ(stats.inserted, reference_stats.inserted);
+  }
+  saturated = static_cast<std::size_t>(
+      std::count(grid.cells.begin(), grid.cells.end(), -codec.max_index()) +
+      std::count(grid.cells.begin(), grid.cells.end(), codec.max_index()));
+  EXPECT_GT(saturated, 100u) << "no cell saturated: the order of the adds was not tested";
 }
 
 TEST(ScanInsertion, InvalidReadingsAreSkippedAndCounted) {

@@ -1,7 +1,9 @@
 #include "intgrid/core/scan_insertion.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -44,6 +46,32 @@ void insert_scan(ProbabilityGrid& grid, const Scan& scan, const GaussianBeamMode
   stats.cells_updated += updated;
 }
 
+namespace {
+
+// The line-of-sight cell of a cell centre |v|^2 = rho_sq from the sensor, as
+// for_each_footprint_cell computes it: round(|v| / cell), monotone in rho_sq.
+std::size_t line_of_sight_cell(double rho_sq, double inv_cell) {
+  return static_cast<std::size_t>(std::sqrt(rho_sq) * inv_cell + 0.5);
+}
+
+// The least rho_sq >= 0 whose line-of-sight cell is k >= 1 or more: bisection over the bit
+// patterns of the non-negative doubles, which they order as their values.
+double least_rho_sq_reaching(std::size_t k, double cell) {
+  const double inv_cell = 1.0 / cell;
+  const double above = 4.0 * std::pow((static_cast<double>(k) + 1.0) * cell, 2);
+  std::uint64_t lo = 0, hi = std::bit_cast<std::uint64_t>(above);  // cell(lo) < k <= cell(hi)
+  while (hi - lo > 1) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    if (line_of_sight_cell(std::bit_cast<double>(mid), inv_cell) >= k)
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return std::bit_cast<double>(hi);
+}
+
+}  // namespace
+
 template <class Index>
 IndexScanInserter<Index>::IndexScanInserter(const GaussianBeamModel& model, double cell,
                                             const SepsCodec& codec, VetoBound veto, double z_step)
@@ -55,13 +83,20 @@ IndexScanInserter<Index>::IndexScanInserter(const GaussianBeamModel& model, doub
     fail<std::invalid_argument>("z step must be positive");
   if (codec.max_index() > std::numeric_limits<Index>::max())
     fail<std::invalid_argument>("the S_eps index width does not fit the grid's cell type");
+  first_cell_sq_ = least_rho_sq_reaching(1, cell);
 }
 
 template <class Index>
 const std::vector<Index>& IndexScanInserter<Index>::beam_indices(double z) {
+  return ism(z).indices;
+}
+
+template <class Index>
+const typename IndexScanInserter<Index>::BeamIsm& IndexScanInserter<Index>::ism(double z) {
   const long long bin = ism_range_bin(z, z_step_);
-  std::vector<Index>& indices = beams_[bin];
-  if (!indices.empty()) return indices;
+  BeamIsm& beam = beams_[bin];
+  if (!beam.indices.empty()) return beam;
+  std::vector<Index>& indices = beam.indices;
   const double zq = static_cast<double>(bin) * z_step_;
   // The exact ISM, extended until it quantizes to 0 (no information) at its end.
   std::vector<double> ism;
@@ -85,7 +120,32 @@ const std::vector<Index>& IndexScanInserter<Index>::beam_indices(double z) {
   indices.resize(last);
   if (veto_ == VetoBound::strongest_claim)
     for (Index& n : indices) n = static_cast<Index>(std::max<int>(n, -strongest_claim));
-  return indices;
+  // The constant core: cells 1..repeated take indices[0]; at least the last cell is left out, so
+  // that the core ends a cell inside the footprint's reach.
+  beam.constant = indices[0];
+  std::size_t repeated = 1;
+  while (repeated + 1 < indices.size() && indices[repeated] == indices[0]) ++repeated;
+  if (repeated > 1 && repeated < indices.size())
+    beam.core_sq = least_rho_sq_reaching(repeated + 1, cell_);
+  return beam;
+}
+
+template <class Index>
+std::size_t IndexScanInserter<Index>::insert_beam(Grid<Index>& grid, Vec2 sensor,
+                                                  const ScanBeam& beam, RowBand rows,
+                                                  double inner_sq) const {
+  Index* const cells = grid.cells.data();
+  const Index* const values = beam.ism->indices.data();
+  const int max_index = codec_.max_index();
+  std::size_t updated = 0;  // local: the cells' byte stores could alias a member
+  for_each_footprint_cell(
+      grid.geometry, sensor, beam.from, beam.to, cell_, beam.ism->indices.size(),
+      [&](std::size_t index, std::size_t k) {
+        cells[index] = fuse_indices(cells[index], values[k - 1], max_index);
+        ++updated;
+      },
+      rows, inner_sq);
+  return updated;
 }
 
 template <class Index>
@@ -94,20 +154,62 @@ void IndexScanInserter<Index>::insert(Grid<Index>& grid, const Scan& scan, Inser
   if (grid.geometry.resolution != cell_)
     fail<std::invalid_argument>("the grid's resolution differs from the inserter's cell size");
   const Pose2 pose = scan.sensor_pose();
-  const int max_index = codec_.max_index();
-  Index* const cells = grid.cells.data();
-  std::size_t updated = 0;  // local: the cells' byte stores could alias a member
+  const Vec2 sensor{pose.x, pose.y};
+  scan_beams_.clear();
   for_each_valid_beam(scan, stats, [&](double z, Vec2 from, Vec2 to) {
-    const std::vector<Index>& indices = beam_indices(z);
-    const Index* const ism = indices.data();
-    for_each_footprint_cell(
-        grid.geometry, {pose.x, pose.y}, from, to, cell_, indices.size(),
-        [&](std::size_t index, std::size_t k) {
-          cells[index] = fuse_indices(cells[index], ism[k - 1], max_index);
-          ++updated;
+    scan_beams_.push_back({from, to, &ism(z)});
+  });
+  std::size_t updated = 0;
+  Index* const cells = grid.cells.data();
+  const int max_index = codec_.max_index();
+  const std::ptrdiff_t width = grid.geometry.width;
+  const auto same = [](Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; };
+  for (std::size_t g = 0; g < scan_beams_.size();) {
+    const BeamIsm& first = *scan_beams_[g].ism;
+    if (first.core_sq <= 0.0) {
+      updated += insert_beam(grid, sensor, scan_beams_[g], rows, 0.0);
+      ++g;
+      continue;
+    }
+    // The group: beams g..end - 1, neighbours (sharing a boundary, in either turning sense) of
+    // one constant, less than a quarter turn wide, whose cores end within kGroupDepth of the
+    // nearest. The depth only trades the group's runs against its beams' own: any value gives
+    // the same cells.
+    constexpr double kGroupDepth = 0.5;  // metres
+    Vec2 from = scan_beams_[g].from, to = scan_beams_[g].to;
+    double nearest = first.core_sq, farthest = first.core_sq;
+    std::size_t end = g + 1;
+    for (; end < scan_beams_.size(); ++end) {
+      const ScanBeam& beam = scan_beams_[end];
+      if (beam.ism->core_sq <= 0.0 || beam.ism->constant != first.constant) break;
+      const bool after = same(beam.from, to), before = same(beam.to, from);
+      if (!after && !before) break;
+      const Vec2 new_from = before ? beam.from : from, new_to = after ? beam.to : to;
+      if (!(cross(new_from, new_to) > 0.0 && dot(new_from, new_to) > 0.0)) break;
+      const double new_nearest = std::min(nearest, beam.ism->core_sq);
+      const double new_farthest = std::max(farthest, beam.ism->core_sq);
+      if (std::sqrt(new_farthest) - std::sqrt(new_nearest) > kGroupDepth) break;
+      from = new_from;
+      to = new_to;
+      nearest = new_nearest;
+      farthest = new_farthest;
+    }
+    const Index constant = first.constant;
+    for_each_sector_run(
+        grid.geometry, sensor, from, to, first_cell_sq_, nearest,
+        [&](const SectorRun& run) {
+          const int n = run.last - run.first + 1;
+          updated += static_cast<std::size_t>(n);
+          Index* c = cells + run.index(grid.geometry, run.first);
+          if (run.along_rows) {
+            for (int i = 0; i < n; ++i) c[i] = fuse_indices(c[i], constant, max_index);
+          } else {
+            for (int i = 0; i < n; ++i, c += width) *c = fuse_indices(*c, constant, max_index);
+          }
         },
         rows);
-  });
+    for (; g < end; ++g) updated += insert_beam(grid, sensor, scan_beams_[g], rows, nearest);
+  }
   stats.cells_updated += updated;
 }
 

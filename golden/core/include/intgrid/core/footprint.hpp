@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <initializer_list>
 #include <limits>
 
 #include "intgrid/core/grid.hpp"
@@ -66,50 +67,65 @@ inline Vec2 transposed(Vec2 v) {
 
 }  // namespace footprint_detail
 
-// Calls visit(cell_index, k) once for every grid cell of the rows `rows` whose centre c satisfies
-//   cross(from, c - sensor) >= 0 and cross(to, c - sensor) < 0 (the half-open
-//   angular interval [from, to), `to` counter-clockwise of `from` by less than pi),
-//   and 1 <= round(|c - sensor| / cell) = k <= cells.
-// Adjacent beams share a boundary vector, so every cell falls in exactly one.
+// Consecutive cells of one grid line: positions first..last along row `line` (positions are
+// columns) or, along_rows false, along column `line` (positions are rows).
+struct SectorRun {
+  bool along_rows = true;
+  int line = 0;
+  int first = 0;
+  int last = -1;
+  std::size_t index(const GridGeometry& grid, int position) const {
+    return along_rows ? grid.index(position, line) : grid.index(line, position);
+  }
+  // The centre of the cell at `position`, from the sensor.
+  Vec2 offset(const GridGeometry& grid, Vec2 sensor, int position) const {
+    return along_rows ? Vec2{grid.centre_x(position) - sensor.x, grid.centre_y(line) - sensor.y}
+                      : Vec2{grid.centre_x(line) - sensor.x, grid.centre_y(position) - sensor.y};
+  }
+};
+
+// Calls run(SectorRun) for the cells of the rows `rows` whose centre c, v = c - sensor, satisfies
+//   cross(from, v) >= 0 and cross(to, v) < 0 (the half-open angular interval [from, to), `to`
+//   counter-clockwise of `from` by less than pi), dot(from + to, v) > 0,
+//   and inner_sq <= |v|^2 < outer_sq (|v|^2 computed as v.x * v.x + v.y * v.y),
+// each cell once, as runs along grid lines.
 //
-// The sector is walked line by line across its length: rows for a beam closer to the x axis,
+// The sector is walked line by line across its length: rows for a sector closer to the x axis,
 // columns for one closer to the y axis, so that a line holds as many of its cells as it can. A
 // line's candidate cells come from the sector's edges (one multiplication each) and, only where
-// the sector's end reaches the line, the disc's chord (a square root); they are widened by a hair
-// against rounding; the exact test above then decides the run's two ends, so the cells visited do
-// not depend on the walk. Most lines of a narrow beam hold a few cells: their set-up is what a beam
-// costs.
-template <class Visit>
-void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 to, double cell,
-                             std::size_t cells, Visit&& visit, RowBand rows = {}) {
+// the disc ends the line, its chord (a square root); they are widened by a hair against rounding.
+// Along a line each comparison above changes at most once, except the inner one, which holds
+// outside one interval (an offset that grows with the position, times a constant, less a
+// constant: rounding keeps the order); so the exact test decides only the ends of a line's runs,
+// and the cells do not depend on the walk.
+template <class Run>
+void for_each_sector_run(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 to, double inner_sq,
+                         double outer_sq, Run&& run, RowBand rows = {}) {
   using footprint_detail::HalfPlaneSpan;
   using footprint_detail::transposed;
   const Vec2 mid{from.x + to.x, from.y + to.y};
-  const double reach = (static_cast<double>(cells) + 0.5) * cell;
-  const double reach_sq = reach * reach;
-  const double inv_cell = 1.0 / cell;
-  // Inside the sector and the disc. Along a line each of its four comparisons changes at most
-  // once (an offset that grows with the position, times a constant, less a constant: rounding
-  // keeps the order), so the cells of a line that pass it are one run.
-  const auto inside = [&](Vec2 v) {
-    return cross(from, v) >= 0.0 && cross(to, v) < 0.0 && dot(mid, v) > 0.0 &&
-           v.x * v.x + v.y * v.y < reach_sq;
+  const auto rho_sq = [](Vec2 v) { return v.x * v.x + v.y * v.y; };
+  const auto inside_outer = [&](Vec2 v) {
+    return cross(from, v) >= 0.0 && cross(to, v) < 0.0 && dot(mid, v) > 0.0 && rho_sq(v) < outer_sq;
   };
-  const auto take = [&](int ix, int iy, Vec2 v) {
-    const auto k = static_cast<std::size_t>(std::sqrt(v.x * v.x + v.y * v.y) * inv_cell + 0.5);
-    if (k >= 1 && k <= cells) visit(grid.index(ix, iy), k);
+  const double outer = std::sqrt(outer_sq);
+  // The cells lie in the quadrilateral inner from, inner to, far from, far to (the triangle
+  // sensor, far from, far to less the one within the inner radius), with far the outer radius over
+  // the cosine of the half angle: its rows and columns bound the walk.
+  const double far = outer / std::sqrt(std::max(0.5 * (1.0 + dot(from, to)), 1e-12));
+  const double inner = inner_sq > 0.0 ? std::sqrt(inner_sq) * (1.0 - 1e-9) : 0.0;
+  const auto bound = [&](double s, double f, double t, auto pick) {
+    return s + pick({inner * f, inner * t, far * f, far * t});
   };
-  // The sector lies in the triangle sensor, sensor + far from, sensor + far to,
-  // with far the reach over the cosine of the half angle: its rows and columns bound the walk.
-  const double far = reach / std::sqrt(std::max(0.5 * (1.0 + dot(from, to)), 1e-12));
+  const auto lowest = [](std::initializer_list<double> l) { return std::min(l); };
+  const auto highest = [](std::initializer_list<double> l) { return std::max(l); };
   const int row_lo =
-      std::max({0, grid.cell_y(sensor.y + far * std::min({0.0, from.y, to.y})) - 1, rows.first});
-  const int row_hi =
-      std::min({grid.height - 1, grid.cell_y(sensor.y + far * std::max({0.0, from.y, to.y})) + 1,
-                rows.last});
-  const int col_lo = std::max(0, grid.cell_x(sensor.x + far * std::min({0.0, from.x, to.x})) - 1);
+      std::max({0, grid.cell_y(bound(sensor.y, from.y, to.y, lowest)) - 1, rows.first});
+  const int row_hi = std::min(
+      {grid.height - 1, grid.cell_y(bound(sensor.y, from.y, to.y, highest)) + 1, rows.last});
+  const int col_lo = std::max(0, grid.cell_x(bound(sensor.x, from.x, to.x, lowest)) - 1);
   const int col_hi =
-      std::min(grid.width - 1, grid.cell_x(sensor.x + far * std::max({0.0, from.x, to.x})) + 1);
+      std::min(grid.width - 1, grid.cell_x(bound(sensor.x, from.x, to.x, highest)) + 1);
   if (row_lo > row_hi || col_lo > col_hi) return;
   const bool along_rows = std::abs(mid.x) >= std::abs(mid.y);
   // In the line's coordinates (along, across): v itself along rows, v transposed along columns,
@@ -120,16 +136,19 @@ void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, V
       front(line({-mid.y, mid.x}), -side);
   const Vec2 s = line(sensor);
   const Vec2 origin = line({grid.origin_x, grid.origin_y});
-  const double hair = 1e-9 * reach;
+  const double hair = 1e-9 * outer;
   const double inv_resolution = 1.0 / grid.resolution;
   // The position of offset `along` in cells, less one half: the cell centred there is its ceil.
   const double position_of_sensor = (s.x - origin.x) * inv_resolution - 0.5;
   const int line_first = along_rows ? row_lo : col_lo, line_last = along_rows ? row_hi : col_hi;
   const int pos_first = along_rows ? col_lo : row_lo, pos_last = along_rows ? col_hi : row_hi;
   const double inf = std::numeric_limits<double>::infinity();
+  SectorRun r;
+  r.along_rows = along_rows;
   for (int l = line_first; l <= line_last; ++l) {
+    r.line = l;
     const double across = origin.y + (l + 0.5) * grid.resolution - s.y;
-    const double chord_sq = reach_sq - across * across;  // (half the disc's chord here)^2
+    const double chord_sq = outer_sq - across * across;  // (half the disc's chord here)^2
     if (chord_sq <= 0.0) continue;
     double lo = -inf, hi = inf;
     from_side.clip(across, lo, hi);
@@ -147,18 +166,68 @@ void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, V
     const double last = std::clamp(std::floor(position_of_sensor + (hi + hair) * inv_resolution),
                                    pos_first - 1.0, static_cast<double>(pos_last));
     int p_lo = static_cast<int>(first), p_hi = static_cast<int>(last);
-    if (along_rows) {
-      const auto v = [&](int ix) { return Vec2{grid.centre_x(ix) - sensor.x, across}; };
-      while (p_lo <= p_hi && !inside(v(p_lo))) ++p_lo;
-      while (p_hi > p_lo && !inside(v(p_hi))) --p_hi;
-      for (int ix = p_lo; ix <= p_hi; ++ix) take(ix, l, v(ix));
-    } else {
-      const auto v = [&](int iy) { return Vec2{across, grid.centre_y(iy) - sensor.y}; };
-      while (p_lo <= p_hi && !inside(v(p_lo))) ++p_lo;
-      while (p_hi > p_lo && !inside(v(p_hi))) --p_hi;
-      for (int iy = p_lo; iy <= p_hi; ++iy) take(l, iy, v(iy));
+    const auto v = [&](int p) { return r.offset(grid, sensor, p); };
+    while (p_lo <= p_hi && !inside_outer(v(p_lo))) ++p_lo;
+    while (p_hi > p_lo && !inside_outer(v(p_hi))) --p_hi;
+    if (p_lo > p_hi) continue;
+    if (!(across * across < inner_sq)) {
+      r.first = p_lo;
+      r.last = p_hi;
+      run(r);
+      continue;
+    }
+    // The positions closer than the inner radius: one interval [a, b] around the sensor's foot.
+    // Its estimate, widened by a position (far more than rounding can move it), is narrowed by
+    // the exact comparison.
+    const auto closer = [&](int p) { return rho_sq(v(p)) < inner_sq; };
+    const double half_chord = std::sqrt(inner_sq - across * across) * inv_resolution;
+    int a = static_cast<int>(
+        std::clamp(std::ceil(position_of_sensor - half_chord) - 1.0, p_lo - 1.0, p_hi + 1.0));
+    int b = static_cast<int>(
+        std::clamp(std::floor(position_of_sensor + half_chord) + 1.0, p_lo - 1.0, p_hi + 1.0));
+    while (a <= b && !closer(a)) ++a;
+    while (b >= a && !closer(b)) --b;
+    if (a > b) {  // no position of the run is closer
+      r.first = p_lo;
+      r.last = p_hi;
+      run(r);
+      continue;
+    }
+    if (p_lo < a) {
+      r.first = p_lo;
+      r.last = std::min(p_hi, a - 1);
+      run(r);
+    }
+    if (b < p_hi) {
+      r.first = std::max(p_lo, b + 1);
+      r.last = p_hi;
+      run(r);
     }
   }
+}
+
+// Calls visit(cell_index, k) once for every grid cell of the rows `rows` whose centre c satisfies
+//   cross(from, c - sensor) >= 0 and cross(to, c - sensor) < 0 (the half-open
+//   angular interval [from, to), `to` counter-clockwise of `from` by less than pi),
+//   |c - sensor|^2 >= inner_sq and 1 <= round(|c - sensor| / cell) = k <= cells.
+// Adjacent beams share a boundary vector, so every cell falls in exactly one.
+template <class Visit>
+void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 to, double cell,
+                             std::size_t cells, Visit&& visit, RowBand rows = {},
+                             double inner_sq = 0.0) {
+  const double reach = (static_cast<double>(cells) + 0.5) * cell;
+  const double inv_cell = 1.0 / cell;
+  for_each_sector_run(
+      grid, sensor, from, to, inner_sq, reach * reach,
+      [&](const SectorRun& r) {
+        for (int p = r.first; p <= r.last; ++p) {
+          const Vec2 v = r.offset(grid, sensor, p);
+          const auto k =
+              static_cast<std::size_t>(std::sqrt(v.x * v.x + v.y * v.y) * inv_cell + 0.5);
+          if (k >= 1 && k <= cells) visit(r.index(grid, p), k);
+        }
+      },
+      rows);
 }
 
 }  // namespace intgrid::core
