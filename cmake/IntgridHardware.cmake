@@ -19,24 +19,19 @@ function(intgrid_lint_rtl name top)
   set_tests_properties(${name} PROPERTIES LABELS hw)
 endfunction()
 
-# intgrid_rtl_fault(SOURCES NAME FILE FROM TO): a fault for a checker's self-test. In the list of
-# RTL paths held by the variable SOURCES, rtl/FILE is replaced by a copy in which FROM (found
-# exactly once) becomes TO, written to <build>/rtl_faults/NAME/FILE. The shipped RTL holds no
-# fault switches: each fault lives here, in the testbench, beside the test that must catch it.
-# Configuration fails if FROM is not found exactly once, so that an edit of the RTL never
-# silently turns a fault into the intact source. Call it again on the same list for a fault
-# across files.
-function(intgrid_rtl_fault sources name file from to)
-  set(src ${PROJECT_SOURCE_DIR}/rtl/${file})
+# _intgrid_fault_copy(SOURCE OUT NAME FROM TO): writes to OUT a copy of SOURCE in which FROM
+# (found exactly once) becomes TO. Configuration fails if FROM is not found exactly once, so that
+# an edit of the source never silently turns a fault into the intact source.
+function(_intgrid_fault_copy src out name from to)
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${src})
   file(READ ${src} text)
   string(FIND "${text}" "${from}" first)
   string(FIND "${text}" "${from}" last REVERSE)
+  file(RELATIVE_PATH shown ${PROJECT_SOURCE_DIR} ${src})
   if(first EQUAL -1 OR NOT first EQUAL last)
-    message(FATAL_ERROR "fault ${name}: `${from}` is not found exactly once in rtl/${file}")
+    message(FATAL_ERROR "fault ${name}: `${from}` is not found exactly once in ${shown}")
   endif()
   string(REPLACE "${from}" "${to}" text "${text}")
-  set(out ${CMAKE_BINARY_DIR}/rtl_faults/${name}/${file})
   # Written only when it changes: the model built from it is not rebuilt at every configure.
   set(old "")
   if(EXISTS ${out})
@@ -45,6 +40,17 @@ function(intgrid_rtl_fault sources name file from to)
   if(NOT old STREQUAL text)
     file(WRITE ${out} "${text}")
   endif()
+endfunction()
+
+# intgrid_rtl_fault(SOURCES NAME FILE FROM TO): a fault for a checker's self-test. In the list of
+# RTL paths held by the variable SOURCES, rtl/FILE is replaced by a copy in which FROM (found
+# exactly once) becomes TO, written to <build>/rtl_faults/NAME/FILE. The shipped RTL holds no
+# fault switches: each fault lives here, in the testbench, beside the test that must catch it.
+# Call it again on the same list for a fault across files.
+function(intgrid_rtl_fault sources name file from to)
+  set(src ${PROJECT_SOURCE_DIR}/rtl/${file})
+  set(out ${CMAKE_BINARY_DIR}/rtl_faults/${name}/${file})
+  _intgrid_fault_copy(${src} ${out} ${name} "${from}" "${to}")
   set(list ${${sources}})
   list(FIND list ${src} at)
   if(at EQUAL -1)
@@ -53,4 +59,14 @@ function(intgrid_rtl_fault sources name file from to)
   list(REMOVE_AT list ${at})
   list(INSERT list ${at} ${out})
   set(${sources} ${list} PARENT_SCOPE)
+endfunction()
+
+# intgrid_systemc_fault(TARGET NAME FILE FROM TO): the same for a SystemC model, whose headers
+# are included as "systemc/FILE": TARGET finds a copy of systemc/FILE with the edit, written to
+# <build>/systemc_faults/NAME/systemc/FILE, before the shipped one.
+function(intgrid_systemc_fault target name file from to)
+  set(root ${CMAKE_BINARY_DIR}/systemc_faults/${name})
+  _intgrid_fault_copy(${PROJECT_SOURCE_DIR}/systemc/${file} ${root}/systemc/${file} ${name}
+                      "${from}" "${to}")
+  target_include_directories(${target} BEFORE PRIVATE ${root})
 endfunction()

@@ -348,12 +348,7 @@ struct SectoralIsmSetup : sc_core::sc_module {
         }
         break;
       case Phase::Suffix:
-#ifdef SECTORAL_ISM_SC_BUG_SCHEDULE
-        // The deliberately broken variant the co-simulation must catch: one suffix cycle more.
-        if (o.cyc == 2 * o.n_win + 2) n.phase = Phase::PrefixFetch;
-#else
         if (o.cyc == 2 * o.n_win + 1) n.phase = Phase::PrefixFetch;
-#endif
         break;
       case Phase::PrefixFetch:
         n.phase = Phase::Prefix;

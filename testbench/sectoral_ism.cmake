@@ -266,7 +266,10 @@ function(_ism_cosim target)
 endfunction()
 _ism_cosim(sectoral_ism_cosim)
 _ism_cosim(sectoral_ism_cosim_sc_bug)
-target_compile_definitions(sectoral_ism_cosim_sc_bug PRIVATE SECTORAL_ISM_SC_BUG_SCHEDULE)
+# The fault: one suffix cycle more in the model's set-up schedule.
+intgrid_systemc_fault(sectoral_ism_cosim_sc_bug sc_schedule sectoral_ism_setup.hpp
+  "if (o.cyc == 2 * o.n_win + 1) n.phase = Phase::PrefixFetch;"
+  "if (o.cyc == 2 * o.n_win + 2) n.phase = Phase::PrefixFetch;")
 # Three seeds per configuration; each fault must be caught at the cycle where it first shows.
 foreach(_cfg ${_ism_configs})
   foreach(_seed 1 2 3)

@@ -29,8 +29,9 @@
 // (without a seed: INTGRID_ISM_SEED, else 42).
 // cone16_bug_phi is the RTL built with log_add_phi. With --fault, the run must fail,
 // and at the right cycle: rtl_phi, on the index RAM write data at the RTL's first index write
-// that differs from golden; sc_schedule (a build of this file with SECTORAL_ISM_SC_BUG_SCHEDULE:
-// one suffix cycle more in the model), on the write enable at the RTL's first index write.
+// that differs from golden; sc_schedule (the build sectoral_ism_cosim_sc_bug, whose SystemC
+// set-up schedule has one suffix cycle more: intgrid_systemc_fault in sectoral_ism.cmake), on the
+// write enable at the RTL's first index write.
 // Prints one JSON line; exit status 0 when the run is as expected, 1 otherwise.
 #include <chrono>
 #include <cstdint>
