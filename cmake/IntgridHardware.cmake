@@ -1,4 +1,5 @@
 # The hardware toolchain: SystemC (pkg-config, built for C++17 on Debian 12) and Verilator.
+include(${CMAKE_CURRENT_LIST_DIR}/IntgridWriteIfChanged.cmake)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(SYSTEMC REQUIRED IMPORTED_TARGET systemc)
 find_package(verilator 5 REQUIRED HINTS /usr/share/verilator)
@@ -32,14 +33,7 @@ function(_intgrid_fault_copy src out name from to)
     message(FATAL_ERROR "fault ${name}: `${from}` is not found exactly once in ${shown}")
   endif()
   string(REPLACE "${from}" "${to}" text "${text}")
-  # Written only when it changes: the model built from it is not rebuilt at every configure.
-  set(old "")
-  if(EXISTS ${out})
-    file(READ ${out} old)
-  endif()
-  if(NOT old STREQUAL text)
-    file(WRITE ${out} "${text}")
-  endif()
+  intgrid_write_if_changed(${out} "${text}")
 endfunction()
 
 # intgrid_rtl_fault(SOURCES NAME FILE FROM TO): a fault for a checker's self-test. In the list of
