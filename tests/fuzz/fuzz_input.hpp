@@ -50,8 +50,9 @@ inline void check_refusal(const io::InputError& e, const std::filesystem::path& 
   require(e.file() == file || (any_file && !e.file().empty()));
   require(!e.field().empty());
   const std::string_view what = e.what();
-  require(what.starts_with(e.file().string()));
-  require(what.size() < 1024 + e.file().string().size());
+  const std::string file_shown = io::printable(e.file().string());
+  require(what.starts_with(file_shown));
+  require(what.size() < 1024 + file_shown.size());
   require(what.find('\n') == std::string_view::npos);
 }
 

@@ -50,6 +50,14 @@ TEST(InputError, TheMessageIsOnePrintableBoundedLine) {
   EXPECT_EQ(long_one.message(), std::string(400, 'a') + "...");
 }
 
+// A file name may hold any byte but '/' and NUL: a name a log named (a ROS map's image) must not
+// put a newline or a terminal escape into the message either.
+TEST(InputError, TheFileNameIsShownPrintable) {
+  const InputError error("dir/a\nb\x1b[2J.pgm", 3, "image", "cannot open");
+  EXPECT_STREQ(error.what(), "dir/a\\x0ab\\x1b[2J.pgm:3: image: cannot open");
+  EXPECT_EQ(error.file(), std::filesystem::path("dir/a\nb\x1b[2J.pgm"));
+}
+
 TEST(ParseNumber, AcceptsPlainNanInfinityAndPlusSign) {
   EXPECT_EQ(parse("1.25"), 1.25);
   EXPECT_EQ(parse("-3e-2"), -0.03);

@@ -18,6 +18,15 @@ void append_hex_escape(std::string& out, unsigned char byte) {
   out += kHex[byte & 0xf];
 }
 
+// c as it is, or as \xNN if it is a control byte.
+void append_printable(std::string& out, char c) {
+  const auto byte = static_cast<unsigned char>(c);
+  if (byte < 0x20 || byte == 0x7f)
+    append_hex_escape(out, byte);
+  else
+    out += c;
+}
+
 // The message on one line of printable text, whoever wrote it: control bytes (a library's
 // message may carry the input's raw newlines or escapes) as \xNN, cut with "..." past
 // kMaxMessageBytes.
@@ -25,18 +34,14 @@ std::string one_line(std::string_view message) {
   std::string out;
   for (const char c : message) {
     if (out.size() >= kMaxMessageBytes) return out + "...";
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f)
-      append_hex_escape(out, byte);
-    else
-      out += c;
+    append_printable(out, c);
   }
   return out;
 }
 
 std::string describe(const std::filesystem::path& file, std::size_t line, const std::string& field,
                      const std::string& message) {
-  std::string text = file.string();
+  std::string text = printable(file.string());
   if (line != 0) {
     text += ':';
     text += std::to_string(line);
@@ -49,6 +54,13 @@ std::string describe(const std::filesystem::path& file, std::size_t line, const 
 }
 
 }  // namespace
+
+std::string printable(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) append_printable(out, c);
+  return out;
+}
 
 std::string quote_input(std::string_view text, std::size_t max_chars) {
   std::string quoted = "\"";

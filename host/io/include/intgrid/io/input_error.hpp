@@ -13,8 +13,9 @@ namespace intgrid::io {
 class InputError : public std::runtime_error {
  public:
   // line is 1-based; 0 means the problem is not on one line (e.g. a missing file).
-  // what() is "FILE:LINE: FIELD: MESSAGE", or "FILE: FIELD: MESSAGE" when line is 0; MESSAGE is
-  // kept to one line (control bytes as \xNN) of at most about 400 bytes.
+  // what() is "FILE:LINE: FIELD: MESSAGE", or "FILE: FIELD: MESSAGE" when line is 0; FILE is
+  // printable(file) (a file name may hold any byte but '/' and NUL), MESSAGE is kept to one line
+  // (control bytes as \xNN) of at most about 400 bytes.
   InputError(std::filesystem::path file, std::size_t line, std::string field, std::string message);
 
   const std::filesystem::path& file() const noexcept { return file_; }
@@ -28,6 +29,9 @@ class InputError : public std::runtime_error {
   std::string field_;
   std::string message_;
 };
+
+// text with its control bytes as \xNN: a file name as error messages show it.
+std::string printable(std::string_view text);
 
 // Raw input quoted for an error message: in double quotes, bytes other than printable ASCII as
 // \xNN, cut after `max_chars` characters with "..." (a damaged file must not flood a terminal).
