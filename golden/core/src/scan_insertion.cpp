@@ -194,17 +194,20 @@ void IndexScanInserter<Index>::insert(Grid<Index>& grid, const Scan& scan, Inser
       nearest = new_nearest;
       farthest = new_farthest;
     }
-    const Index constant = first.constant;
     for_each_sector_run(
         grid.geometry, sensor, from, to, first_cell_sq_, nearest,
-        [&](const SectorRun& run) {
+        [&, constant = first.constant](const SectorRun& run) {
+          // Copies, not references: the cells' byte stores could alias what a reference names,
+          // which would reload it every cell and keep the row's loop from being vectorized.
+          const int bound = max_index;
+          const std::ptrdiff_t stride = run.along_rows ? 1 : width;
           const int n = run.last - run.first + 1;
           updated += static_cast<std::size_t>(n);
           Index* c = cells + run.index(grid.geometry, run.first);
-          if (run.along_rows) {
-            for (int i = 0; i < n; ++i) c[i] = fuse_indices(c[i], constant, max_index);
+          if (stride == 1) {
+            for (int i = 0; i < n; ++i) c[i] = fuse_indices(c[i], constant, bound);
           } else {
-            for (int i = 0; i < n; ++i, c += width) *c = fuse_indices(*c, constant, max_index);
+            for (int i = 0; i < n; ++i, c += stride) *c = fuse_indices(*c, constant, bound);
           }
         },
         rows);
