@@ -1,7 +1,6 @@
 #include "intgrid/core/scan_insertion.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -45,32 +44,6 @@ void insert_scan(ProbabilityGrid& grid, const Scan& scan, const GaussianBeamMode
   });
   stats.cells_updated += updated;
 }
-
-namespace {
-
-// The line-of-sight cell of a cell centre |v|^2 = rho_sq from the sensor, as
-// for_each_footprint_cell computes it: round(|v| / cell), monotone in rho_sq.
-std::size_t line_of_sight_cell(double rho_sq, double inv_cell) {
-  return static_cast<std::size_t>(std::sqrt(rho_sq) * inv_cell + 0.5);
-}
-
-// The least rho_sq >= 0 whose line-of-sight cell is k >= 1 or more: bisection over the bit
-// patterns of the non-negative doubles, which they order as their values.
-double least_rho_sq_reaching(std::size_t k, double cell) {
-  const double inv_cell = 1.0 / cell;
-  const double above = 4.0 * std::pow((static_cast<double>(k) + 1.0) * cell, 2);
-  std::uint64_t lo = 0, hi = std::bit_cast<std::uint64_t>(above);  // cell(lo) < k <= cell(hi)
-  while (hi - lo > 1) {
-    const std::uint64_t mid = lo + (hi - lo) / 2;
-    if (line_of_sight_cell(std::bit_cast<double>(mid), inv_cell) >= k)
-      hi = mid;
-    else
-      lo = mid;
-  }
-  return std::bit_cast<double>(hi);
-}
-
-}  // namespace
 
 template <class Index>
 IndexScanInserter<Index>::IndexScanInserter(const GaussianBeamModel& model, double cell,
@@ -125,8 +98,7 @@ const typename IndexScanInserter<Index>::BeamIsm& IndexScanInserter<Index>::ism(
   beam.constant = indices[0];
   std::size_t repeated = 1;
   while (repeated + 1 < indices.size() && indices[repeated] == indices[0]) ++repeated;
-  if (repeated > 1 && repeated < indices.size())
-    beam.core_sq = least_rho_sq_reaching(repeated + 1, cell_);
+  if (repeated > 1) beam.core_sq = least_rho_sq_reaching(repeated + 1, cell_);
   return beam;
 }
 

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 
@@ -33,6 +35,34 @@ struct RowBand {
   int first = 0;
   int last = std::numeric_limits<int>::max();
 };
+
+// |v|^2 as the footprint computes it for a cell centre v from the sensor.
+inline double squared_length(Vec2 v) {
+  return v.x * v.x + v.y * v.y;
+}
+
+// The line-of-sight cell k = round(|v| / cell) of a cell centre at |v|^2 = rho_sq from the
+// sensor (inv_cell = 1 / cell), as for_each_footprint_cell computes it: monotone in rho_sq.
+inline std::size_t line_of_sight_cell(double rho_sq, double inv_cell) {
+  return static_cast<std::size_t>(std::sqrt(rho_sq) * inv_cell + 0.5);
+}
+
+// The least rho_sq >= 0 whose line-of-sight cell is k >= 1 or more, exactly: bisection over the
+// bit patterns of the non-negative doubles, which they order as their values. Cells closer than
+// it have a smaller k, cells at or past it k or more.
+inline double least_rho_sq_reaching(std::size_t k, double cell) {
+  const double inv_cell = 1.0 / cell;
+  const double above = 4.0 * std::pow((static_cast<double>(k) + 1.0) * cell, 2);
+  std::uint64_t lo = 0, hi = std::bit_cast<std::uint64_t>(above);  // cell(lo) < k <= cell(hi)
+  while (hi - lo > 1) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    if (line_of_sight_cell(std::bit_cast<double>(mid), inv_cell) >= k)
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return std::bit_cast<double>(hi);
+}
 
 namespace footprint_detail {
 
@@ -104,9 +134,9 @@ void for_each_sector_run(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 
   using footprint_detail::HalfPlaneSpan;
   using footprint_detail::transposed;
   const Vec2 mid{from.x + to.x, from.y + to.y};
-  const auto rho_sq = [](Vec2 v) { return v.x * v.x + v.y * v.y; };
   const auto inside_outer = [&](Vec2 v) {
-    return cross(from, v) >= 0.0 && cross(to, v) < 0.0 && dot(mid, v) > 0.0 && rho_sq(v) < outer_sq;
+    return cross(from, v) >= 0.0 && cross(to, v) < 0.0 && dot(mid, v) > 0.0 &&
+           squared_length(v) < outer_sq;
   };
   const double outer = std::sqrt(outer_sq);
   // The cells lie in the quadrilateral inner from, inner to, far from, far to (the triangle
@@ -145,6 +175,12 @@ void for_each_sector_run(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 
   const double inf = std::numeric_limits<double>::infinity();
   SectorRun r;
   r.along_rows = along_rows;
+  const auto emit = [&](int first, int last) {
+    if (first > last) return;
+    r.first = first;
+    r.last = last;
+    run(r);
+  };
   for (int l = line_first; l <= line_last; ++l) {
     r.line = l;
     const double across = origin.y + (l + 0.5) * grid.resolution - s.y;
@@ -171,15 +207,13 @@ void for_each_sector_run(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 
     while (p_hi > p_lo && !inside_outer(v(p_hi))) --p_hi;
     if (p_lo > p_hi) continue;
     if (!(across * across < inner_sq)) {
-      r.first = p_lo;
-      r.last = p_hi;
-      run(r);
+      emit(p_lo, p_hi);
       continue;
     }
     // The positions closer than the inner radius: one interval [a, b] around the sensor's foot.
     // Its estimate, widened by a position (far more than rounding can move it), is narrowed by
     // the exact comparison.
-    const auto closer = [&](int p) { return rho_sq(v(p)) < inner_sq; };
+    const auto closer = [&](int p) { return squared_length(v(p)) < inner_sq; };
     const double half_chord = std::sqrt(inner_sq - across * across) * inv_resolution;
     int a = static_cast<int>(
         std::clamp(std::ceil(position_of_sensor - half_chord) - 1.0, p_lo - 1.0, p_hi + 1.0));
@@ -188,21 +222,11 @@ void for_each_sector_run(const GridGeometry& grid, Vec2 sensor, Vec2 from, Vec2 
     while (a <= b && !closer(a)) ++a;
     while (b >= a && !closer(b)) --b;
     if (a > b) {  // no position of the run is closer
-      r.first = p_lo;
-      r.last = p_hi;
-      run(r);
+      emit(p_lo, p_hi);
       continue;
     }
-    if (p_lo < a) {
-      r.first = p_lo;
-      r.last = std::min(p_hi, a - 1);
-      run(r);
-    }
-    if (b < p_hi) {
-      r.first = std::max(p_lo, b + 1);
-      r.last = p_hi;
-      run(r);
-    }
+    emit(p_lo, std::min(p_hi, a - 1));
+    emit(std::max(p_lo, b + 1), p_hi);
   }
 }
 
@@ -221,9 +245,8 @@ void for_each_footprint_cell(const GridGeometry& grid, Vec2 sensor, Vec2 from, V
       grid, sensor, from, to, inner_sq, reach * reach,
       [&](const SectorRun& r) {
         for (int p = r.first; p <= r.last; ++p) {
-          const Vec2 v = r.offset(grid, sensor, p);
-          const auto k =
-              static_cast<std::size_t>(std::sqrt(v.x * v.x + v.y * v.y) * inv_cell + 0.5);
+          const std::size_t k =
+              line_of_sight_cell(squared_length(r.offset(grid, sensor, p)), inv_cell);
           if (k >= 1 && k <= cells) visit(r.index(grid, p), k);
         }
       },
