@@ -1,18 +1,6 @@
 // Odometry: the true motion with drift and noise.
 #include "intgrid/simulation/simulator.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <functional>
-#include <limits>
-#include <queue>
-#include <stdexcept>
-#include <string>
-#include <utility>
-
-#include "intgrid/core/failure.hpp"
-
 #include "simulation_support.hpp"
 
 namespace intgrid::simulation {

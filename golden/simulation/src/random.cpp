@@ -1,17 +1,7 @@
 // The simulator's random numbers: one stream a purpose, each derived from the seed.
 #include "intgrid/simulation/simulator.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <functional>
-#include <limits>
-#include <queue>
 #include <stdexcept>
-#include <string>
-#include <utility>
-
-#include "intgrid/core/failure.hpp"
 
 #include "simulation_support.hpp"
 

@@ -1,17 +1,8 @@
 // Range sensors: LiDAR and rings of cones, ray cast in a world.
 #include "intgrid/simulation/simulator.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <functional>
 #include <limits>
-#include <queue>
 #include <stdexcept>
-#include <string>
-#include <utility>
-
-#include "intgrid/core/failure.hpp"
 
 #include "simulation_support.hpp"
 

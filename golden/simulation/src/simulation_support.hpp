@@ -4,18 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <functional>
-#include <limits>
-#include <queue>
-#include <stdexcept>
+#include <numbers>
 #include <string>
 #include <utility>
-
-#include <numbers>
 #include <vector>
-#include "intgrid/core/failure.hpp"
 
+#include "intgrid/core/failure.hpp"
 #include "intgrid/simulation/simulator.hpp"
 
 namespace intgrid::simulation::support {

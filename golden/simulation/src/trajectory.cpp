@@ -1,17 +1,9 @@
 // Trajectories through a world's free space.
 #include "intgrid/simulation/simulator.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <functional>
 #include <limits>
 #include <queue>
 #include <stdexcept>
-#include <string>
-#include <utility>
-
-#include "intgrid/core/failure.hpp"
 
 #include "simulation_support.hpp"
 
