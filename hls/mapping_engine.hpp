@@ -1,0 +1,217 @@
+// The mapping engine, as synthesizable C++: a scan's readings laid along integer rays,
+// each line-of-sight cell given its reading's narrow-ISM index and fused into a tile of S_eps
+// cells in on-chip RAM by kernel 1's saturating adder. Bit for bit golden's
+// insert_scan_along_rays (golden/core/include/intgrid/core/ray_insertion.hpp) over the tile: the
+// same rays (Amanatides-Woo with exact integer comparisons, the same sine table), the same cells
+// in the same order, the same sums.
+//
+// Only the form differs, for hardware:
+//   - the sine table is a quarter wave, kQuarterTurn + 1 entries; the other quadrants by symmetry
+//     (equal to golden's whole table at every angle, testbench/mapping_engine_hls_test.cpp);
+//   - the line-of-sight cell k = (d + c/2) / c, a division a cell in golden, is a counter: the
+//     projection d of a visited cell's centre never decreases along a ray and grows by at most
+//     one cell a step, so k steps by one where d passes its next threshold;
+//   - a reading's ISM is a core and a tail: cells 1..core take one constant (the reading's empty
+//     index), the others come from a tail RAM, where readings of the same tail share one copy.
+//
+// Widths (the sensor's readings below 2^kRangeBits mm, cells of at most 10^4 mm as golden's):
+//   cell, z step        uint<kCellBits>, uint<kRangeBits>
+//   sensor offset p     sint<kCellBits + 1>: within half a cell of its cell's centre
+//   doubled mm x, y     sint<kCellBits + 3>
+//   sin, cos (Q16)      sint<18>; magnitudes uint<17>
+//   tx, ty, d           sint<kWalkBits>: the boundary distances times |sin|, |cos|, and the
+//                       projection in Q17 mm; (2^19 + 2^14) 2^17 < 2^37 with room for a step
+//   cell coordinates    sint<kCoordBits>: the sensor within 2^(kCoordBits-2) cells of the tile
+//   k, cells a reading  uint<kRangeBits + 1>
+// Everything has a fixed width and a static size; no floating point, no dynamic memory, no
+// recursion, no I/O; nothing but standard headers and the kernels' own.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "hls/fixed_int.hpp"
+#include "hls/hls_pragma.hpp"
+#include "hls/index_fusion.hpp"
+
+namespace intgrid::hls {
+
+namespace mapping {
+inline constexpr int kRangeBits = 18;  // readings below 262.144 m
+inline constexpr int kCellBits = 14;   // cells of 1 .. 10^4 mm
+inline constexpr int kWalkBits = kRangeBits + 21;
+inline constexpr int kCoordBits = 26;
+inline constexpr int kQuarterTurn = 16384;  // angle units (2^16 a turn)
+using Angle = uint<16>;
+using Sine = sint<18>;
+using Count = uint<kRangeBits + 1>;
+}  // namespace mapping
+
+// Where a scan was taken: the sensor in tile cell (cx, cy), (px, py) mm from that cell's centre
+// (at most half a cell each way), heading in angle units.
+struct ScanPose {
+  sint<mapping::kCoordBits> cx, cy;
+  sint<mapping::kCellBits + 1> px, py;
+  mapping::Angle heading;
+};
+
+// One reading: its bearing in the sensor's frame (angle units) and its range (mm, 0 for none).
+struct RangeReading {
+  mapping::Angle bearing;
+  uint<mapping::kRangeBits> range_mm;
+};
+
+// The ISM of one range bin: `cells` line-of-sight cells, 1..core of them `constant`, the others
+// tail RAM entries from `tail` on.
+template <int B, int TAIL_BITS>
+struct IsmBin {
+  mapping::Count cells, core;
+  sint<B> constant;
+  uint<TAIL_BITS> tail;
+};
+
+// B-bit S_eps cells, a 2^TILE_BITS square tile; BINS range bins, TAIL_CELLS tail entries.
+template <int B, int TILE_BITS, int BINS, int TAIL_CELLS>
+class MappingEngine {
+ public:
+  static constexpr int kSide = 1 << TILE_BITS;
+  static constexpr int kTailBits = unsigned_bits(TAIL_CELLS);
+  using Bin = IsmBin<B, kTailBits>;
+
+  // The grid's cell and the ISM table's range step (mm), and the range at and past which
+  // readings are not used.
+  struct Settings {
+    uint<mapping::kCellBits> cell_mm;
+    uint<mapping::kRangeBits> z_step_mm;
+    uint<mapping::kRangeBits> max_range_mm;
+  };
+
+  void configure(const Settings& settings) { settings_ = settings; }
+  // sin(2 pi a / 2^16) 2^16 rounded, a = 0 .. kQuarterTurn (golden's make_sine_table_q16).
+  void load_sine(int a, uint<17> value) { quarter_sine_[static_cast<std::uint32_t>(a)] = value; }
+  void load_bin(int bin, const Bin& value) { bins_[static_cast<std::uint32_t>(bin)] = value; }
+  void load_tail(int address, sint<B> value) { tail_[static_cast<std::uint32_t>(address)] = value; }
+  // Every cell back to "no information" (index 0).
+  void clear() {
+    for (int i = 0; i < kSide * kSide; ++i) {
+      INTGRID_HLS_PRAGMA("HLS PIPELINE II=1")
+      tile_[static_cast<std::uint32_t>(i)] = 0;
+    }
+  }
+
+  mapping::Sine sin(mapping::Angle a) const {
+    const std::uint32_t angle = a;
+    const std::uint32_t quadrant = angle >> 14, within = angle & (mapping::kQuarterTurn - 1);
+    const std::uint32_t entry = (quadrant & 1u) != 0 ? mapping::kQuarterTurn - within : within;
+    const uint<17> magnitude = quarter_sine_[entry];
+    return quadrant >= 2 ? mapping::Sine(-magnitude) : mapping::Sine(magnitude);
+  }
+  mapping::Sine cos(mapping::Angle a) const {
+    return sin(mapping::Angle((a.value() + mapping::kQuarterTurn) & 0xFFFF));
+  }
+
+  void begin_scan(const ScanPose& pose) { pose_ = pose; }
+
+  // Walks the cells the ray from the scan's sensor along `angle` crosses, visit(dx, dy, k) for
+  // each with k its line-of-sight cell (k = (d + c/2) / c, d the projection of its centre in mm),
+  // until d passes limit_mm. Returns the cells walked (a cell a cycle in hardware).
+  template <class Visit>
+  std::uint32_t walk(mapping::Angle angle, uint<mapping::kRangeBits + 1> limit_mm,
+                     Visit&& visit) const {
+    using Walk = sint<mapping::kWalkBits>;
+    const uint<mapping::kCellBits> c = settings_.cell_mm;
+    const uint<mapping::kCellBits + 1> c2 = shl<1>(c);
+    // Doubled millimetres from the lower-left corner of the sensor's cell; the cell (ix, iy)
+    // holding the sensor is that one or a neighbour.
+    const sint<mapping::kCellBits + 3> x = shl<1>(pose_.px) + c, y = shl<1>(pose_.py) + c;
+    const sint<2> ix0 = x < 0 ? -1 : (x >= c2 ? 1 : 0);
+    const sint<2> iy0 = y < 0 ? -1 : (y >= c2 ? 1 : 0);
+    const mapping::Sine cs = cos(angle), sn = sin(angle);
+    const bool forward_x = cs > 0, forward_y = sn > 0;
+    const uint<17> acs = magnitude(cs), asn = magnitude(sn);
+    // The next boundary along each axis is met first where tx = bx |sin| < ty = by |cos|. A step
+    // along x adds c2 |sin| to tx and c2 |cos| to 2^17 d; along y, c2 |cos| to ty and c2 |sin|
+    // to 2^17 d.
+    const sint<2> one = 1;
+    const sint<mapping::kCellBits + 3> bx =
+        forward_x ? Walk((ix0 + one) * c2 - x) : Walk(x - ix0 * c2);
+    const sint<mapping::kCellBits + 3> by =
+        forward_y ? Walk((iy0 + one) * c2 - y) : Walk(y - iy0 * c2);
+    Walk tx = bx * asn, ty = by * acs;
+    const Walk c2_cos = c2 * acs, c2_sin = c2 * asn;
+    Walk d_q17 = (ix0 * c2 + c - x) * cs + (iy0 * c2 + c - y) * sn;
+    sint<mapping::kCoordBits> ix = ix0, iy = iy0;
+    const Walk end_q17 = shl<17>(uint<mapping::kRangeBits + 2>(limit_mm + uint<1>(1)));
+    // k counts the thresholds (m c - c/2) 2^17 that d has reached, m = 1, 2, ...
+    const Walk cell_q17 = shl<17>(c);
+    Walk next_q17 = shl<17>(uint<mapping::kCellBits>(c - shr<1>(c)));
+    mapping::Count k = 0;
+    if (d_q17 >= next_q17) {
+      k = 1;
+      next_q17 = next_q17 + cell_q17;
+    }
+    std::uint32_t walked = 0;
+    while (d_q17 < end_q17) {
+      visit(ix, iy, k);
+      ++walked;
+      if (tx < ty) {
+        ix = forward_x ? ix + one : ix - one;
+        tx = tx + c2_sin;
+        d_q17 = d_q17 + c2_cos;
+      } else {
+        iy = forward_y ? iy + one : iy - one;
+        ty = ty + c2_cos;
+        d_q17 = d_q17 + c2_sin;
+      }
+      if (d_q17 >= next_q17) {
+        k = k + uint<1>(1);
+        next_q17 = next_q17 + cell_q17;
+      }
+    }
+    return walked;
+  }
+
+  // One reading of the scan begun last: its ISM fused into the tile along its ray. Returns the
+  // cells walked.
+  std::uint32_t insert(const RangeReading& reading) {
+    const uint<mapping::kRangeBits> z = reading.range_mm;
+    if (z == 0 || z >= settings_.max_range_mm) return 0;
+    const auto bin = static_cast<std::uint32_t>((z + shr<1>(settings_.z_step_mm)).value() /
+                                                settings_.z_step_mm.value());
+    const Bin ism = bins_[bin];
+    const uint<mapping::kCellBits> c = settings_.cell_mm;
+    const uint<mapping::kRangeBits + 1> limit = ism.cells * c + shr<1>(c);
+    const mapping::Angle angle((pose_.heading + reading.bearing).value() & 0xFFFF);
+    return walk(angle, limit,
+                [&](sint<mapping::kCoordBits> dx, sint<mapping::kCoordBits> dy, mapping::Count k) {
+                  if (k == 0 || k > ism.cells) return;
+                  const sint<mapping::kCoordBits + 1> x = pose_.cx + dx, y = pose_.cy + dy;
+                  if (x < 0 || x >= kSide || y < 0 || y >= kSide) return;
+                  const sint<B> value =
+                      k <= ism.core
+                          ? ism.constant
+                          : tail_[static_cast<std::uint32_t>(ism.tail + k - ism.core) - 1u];
+                  const std::uint32_t address =
+                      (static_cast<std::uint32_t>(y) << TILE_BITS) | static_cast<std::uint32_t>(x);
+                  tile_[address] = uint<B>(saturating_add<B>(
+                      tile_[address],
+                      static_cast<std::uint32_t>(value.value()) & ((std::uint32_t{1} << B) - 1u)));
+                });
+  }
+
+  // The read port: the S_eps index of cell (x, y).
+  sint<B> cell(int x, int y) const {
+    return sint<B>(sign_extend<B>(
+        tile_[(static_cast<std::uint32_t>(y) << TILE_BITS) | static_cast<std::uint32_t>(x)]));
+  }
+
+ private:
+  Settings settings_{};
+  ScanPose pose_{};
+  std::array<uint<17>, mapping::kQuarterTurn + 1> quarter_sine_{};
+  std::array<Bin, BINS> bins_{};
+  std::array<sint<B>, TAIL_CELLS> tail_{};
+  std::array<uint<B>, static_cast<std::size_t>(kSide) * kSide> tile_{};
+};
+
+}  // namespace intgrid::hls
