@@ -77,6 +77,7 @@ class MappingEngine {
   static constexpr int kSide = 1 << TILE_BITS;
   static constexpr int kTailBits = unsigned_bits(TAIL_CELLS);
   using Bin = IsmBin<B, kTailBits>;
+  using Walk = sint<mapping::kWalkBits>;
 
   // The grid's cell and the ISM table's range step (mm), and the range at and past which
   // readings are not used.
@@ -112,90 +113,128 @@ class MappingEngine {
 
   void begin_scan(const ScanPose& pose) { pose_ = pose; }
 
+  // A ray being walked: the cell (ix, iy) it is in (relative to the sensor's), that cell's
+  // line-of-sight cell k, and the registers that decide the next step. The next boundary along
+  // each axis is met first where tx = bx |sin| < ty = by |cos| (bx, by the doubled millimetres to
+  // it); a step along x adds c2 |sin| to tx and c2 |cos| to 2^17 d, along y c2 |cos| to ty and
+  // c2 |sin| to 2^17 d. k counts the thresholds (m c - c/2) 2^17 that d has reached, m >= 1.
+  struct Ray {
+    sint<mapping::kCoordBits> ix, iy;
+    mapping::Count k;
+    Walk tx, ty, d_q17, next_q17;
+    Walk c2_cos, c2_sin, cell_q17, end_q17;
+    bool forward_x, forward_y;
+    bool done() const { return !(d_q17 < end_q17); }  // d has passed the walk's limit
+  };
+
+  // The ray from the scan's sensor along `angle`, walked until the projection d of a cell's
+  // centre passes limit_mm: its first cell, the one holding the sensor.
+  Ray start_ray(mapping::Angle angle, uint<mapping::kRangeBits + 1> limit_mm) const {
+    const uint<mapping::kCellBits> c = settings_.cell_mm;
+    const uint<mapping::kCellBits + 1> c2 = shl<1>(c);
+    // Doubled millimetres from the lower-left corner of the sensor's cell; the cell holding the
+    // sensor is that one or a neighbour.
+    const sint<mapping::kCellBits + 3> x = shl<1>(pose_.px) + c, y = shl<1>(pose_.py) + c;
+    const sint<2> ix0 = x < 0 ? -1 : (x >= c2 ? 1 : 0);
+    const sint<2> iy0 = y < 0 ? -1 : (y >= c2 ? 1 : 0);
+    const mapping::Sine cs = cos(angle), sn = sin(angle);
+    const uint<17> acs = magnitude(cs), asn = magnitude(sn);
+    const sint<2> one = 1;
+    Ray r;
+    r.forward_x = cs > 0;
+    r.forward_y = sn > 0;
+    const sint<mapping::kCellBits + 3> bx =
+        r.forward_x ? Walk((ix0 + one) * c2 - x) : Walk(x - ix0 * c2);
+    const sint<mapping::kCellBits + 3> by =
+        r.forward_y ? Walk((iy0 + one) * c2 - y) : Walk(y - iy0 * c2);
+    r.ix = ix0;
+    r.iy = iy0;
+    r.tx = bx * asn;
+    r.ty = by * acs;
+    r.c2_cos = c2 * acs;
+    r.c2_sin = c2 * asn;
+    r.d_q17 = (ix0 * c2 + c - x) * cs + (iy0 * c2 + c - y) * sn;
+    r.end_q17 = shl<17>(uint<mapping::kRangeBits + 2>(limit_mm + uint<1>(1)));
+    r.cell_q17 = shl<17>(c);
+    r.next_q17 = shl<17>(uint<mapping::kCellBits>(c - shr<1>(c)));
+    r.k = 0;
+    count_threshold(r);
+    return r;
+  }
+
+  // One step to the next cell the ray crosses.
+  static void advance(Ray& r) {
+    const sint<2> one = 1;
+    if (r.tx < r.ty) {
+      r.ix = r.forward_x ? r.ix + one : r.ix - one;
+      r.tx = r.tx + r.c2_sin;
+      r.d_q17 = r.d_q17 + r.c2_cos;
+    } else {
+      r.iy = r.forward_y ? r.iy + one : r.iy - one;
+      r.ty = r.ty + r.c2_cos;
+      r.d_q17 = r.d_q17 + r.c2_sin;
+    }
+    count_threshold(r);
+  }
+
   // Walks the cells the ray from the scan's sensor along `angle` crosses, visit(dx, dy, k) for
   // each with k its line-of-sight cell (k = (d + c/2) / c, d the projection of its centre in mm),
   // until d passes limit_mm. Returns the cells walked (a cell a cycle in hardware).
   template <class Visit>
   std::uint32_t walk(mapping::Angle angle, uint<mapping::kRangeBits + 1> limit_mm,
                      Visit&& visit) const {
-    using Walk = sint<mapping::kWalkBits>;
-    const uint<mapping::kCellBits> c = settings_.cell_mm;
-    const uint<mapping::kCellBits + 1> c2 = shl<1>(c);
-    // Doubled millimetres from the lower-left corner of the sensor's cell; the cell (ix, iy)
-    // holding the sensor is that one or a neighbour.
-    const sint<mapping::kCellBits + 3> x = shl<1>(pose_.px) + c, y = shl<1>(pose_.py) + c;
-    const sint<2> ix0 = x < 0 ? -1 : (x >= c2 ? 1 : 0);
-    const sint<2> iy0 = y < 0 ? -1 : (y >= c2 ? 1 : 0);
-    const mapping::Sine cs = cos(angle), sn = sin(angle);
-    const bool forward_x = cs > 0, forward_y = sn > 0;
-    const uint<17> acs = magnitude(cs), asn = magnitude(sn);
-    // The next boundary along each axis is met first where tx = bx |sin| < ty = by |cos|. A step
-    // along x adds c2 |sin| to tx and c2 |cos| to 2^17 d; along y, c2 |cos| to ty and c2 |sin|
-    // to 2^17 d.
-    const sint<2> one = 1;
-    const sint<mapping::kCellBits + 3> bx =
-        forward_x ? Walk((ix0 + one) * c2 - x) : Walk(x - ix0 * c2);
-    const sint<mapping::kCellBits + 3> by =
-        forward_y ? Walk((iy0 + one) * c2 - y) : Walk(y - iy0 * c2);
-    Walk tx = bx * asn, ty = by * acs;
-    const Walk c2_cos = c2 * acs, c2_sin = c2 * asn;
-    Walk d_q17 = (ix0 * c2 + c - x) * cs + (iy0 * c2 + c - y) * sn;
-    sint<mapping::kCoordBits> ix = ix0, iy = iy0;
-    const Walk end_q17 = shl<17>(uint<mapping::kRangeBits + 2>(limit_mm + uint<1>(1)));
-    // k counts the thresholds (m c - c/2) 2^17 that d has reached, m = 1, 2, ...
-    const Walk cell_q17 = shl<17>(c);
-    Walk next_q17 = shl<17>(uint<mapping::kCellBits>(c - shr<1>(c)));
-    mapping::Count k = 0;
-    if (d_q17 >= next_q17) {
-      k = 1;
-      next_q17 = next_q17 + cell_q17;
-    }
     std::uint32_t walked = 0;
-    while (d_q17 < end_q17) {
-      visit(ix, iy, k);
+    for (Ray r = start_ray(angle, limit_mm); !r.done(); advance(r)) {
+      visit(r.ix, r.iy, r.k);
       ++walked;
-      if (tx < ty) {
-        ix = forward_x ? ix + one : ix - one;
-        tx = tx + c2_sin;
-        d_q17 = d_q17 + c2_cos;
-      } else {
-        iy = forward_y ? iy + one : iy - one;
-        ty = ty + c2_cos;
-        d_q17 = d_q17 + c2_sin;
-      }
-      if (d_q17 >= next_q17) {
-        k = k + uint<1>(1);
-        next_q17 = next_q17 + cell_q17;
-      }
     }
     return walked;
+  }
+
+  // Whether a reading is used (0 < z < the maximum range), and if so its range bin's ISM (the
+  // division is the one golden's table makes) and the length of its walk.
+  bool reading_ism(uint<mapping::kRangeBits> z, Bin& ism,
+                   uint<mapping::kRangeBits + 1>& limit_mm) const {
+    if (z == 0 || z >= settings_.max_range_mm) return false;
+    const auto bin = static_cast<std::uint32_t>((z + shr<1>(settings_.z_step_mm)).value() /
+                                                settings_.z_step_mm.value());
+    ism = bins_[bin];
+    const uint<mapping::kCellBits> c = settings_.cell_mm;
+    limit_mm = ism.cells * c + shr<1>(c);
+    return true;
+  }
+
+  // The ray's direction for a reading of the scan begun last.
+  mapping::Angle reading_angle(mapping::Angle bearing) const {
+    return mapping::Angle((pose_.heading + bearing).value() & 0xFFFF);
+  }
+
+  // Fuses line-of-sight cell k of a reading's ISM into the tile at (dx, dy) from the sensor's
+  // cell, if k lies in 1..cells and the cell in the tile.
+  void fuse_cell(const Bin& ism, sint<mapping::kCoordBits> dx, sint<mapping::kCoordBits> dy,
+                 mapping::Count k) {
+    if (k == 0 || k > ism.cells) return;
+    const sint<mapping::kCoordBits + 1> x = pose_.cx + dx, y = pose_.cy + dy;
+    if (x < 0 || x >= kSide || y < 0 || y >= kSide) return;
+    const sint<B> value = k <= ism.core
+                              ? ism.constant
+                              : tail_[static_cast<std::uint32_t>(ism.tail + k - ism.core) - 1u];
+    const std::uint32_t address =
+        (static_cast<std::uint32_t>(y) << TILE_BITS) | static_cast<std::uint32_t>(x);
+    tile_[address] =
+        uint<B>(saturating_add<B>(tile_[address], static_cast<std::uint32_t>(value.value()) &
+                                                      ((std::uint32_t{1} << B) - 1u)));
   }
 
   // One reading of the scan begun last: its ISM fused into the tile along its ray. Returns the
   // cells walked.
   std::uint32_t insert(const RangeReading& reading) {
-    const uint<mapping::kRangeBits> z = reading.range_mm;
-    if (z == 0 || z >= settings_.max_range_mm) return 0;
-    const auto bin = static_cast<std::uint32_t>((z + shr<1>(settings_.z_step_mm)).value() /
-                                                settings_.z_step_mm.value());
-    const Bin ism = bins_[bin];
-    const uint<mapping::kCellBits> c = settings_.cell_mm;
-    const uint<mapping::kRangeBits + 1> limit = ism.cells * c + shr<1>(c);
-    const mapping::Angle angle((pose_.heading + reading.bearing).value() & 0xFFFF);
-    return walk(angle, limit,
+    Bin ism;
+    uint<mapping::kRangeBits + 1> limit;
+    if (!reading_ism(reading.range_mm, ism, limit)) return 0;
+    return walk(reading_angle(reading.bearing), limit,
                 [&](sint<mapping::kCoordBits> dx, sint<mapping::kCoordBits> dy, mapping::Count k) {
-                  if (k == 0 || k > ism.cells) return;
-                  const sint<mapping::kCoordBits + 1> x = pose_.cx + dx, y = pose_.cy + dy;
-                  if (x < 0 || x >= kSide || y < 0 || y >= kSide) return;
-                  const sint<B> value =
-                      k <= ism.core
-                          ? ism.constant
-                          : tail_[static_cast<std::uint32_t>(ism.tail + k - ism.core) - 1u];
-                  const std::uint32_t address =
-                      (static_cast<std::uint32_t>(y) << TILE_BITS) | static_cast<std::uint32_t>(x);
-                  tile_[address] = uint<B>(saturating_add<B>(
-                      tile_[address],
-                      static_cast<std::uint32_t>(value.value()) & ((std::uint32_t{1} << B) - 1u)));
+                  fuse_cell(ism, dx, dy, k);
                 });
   }
 
@@ -206,6 +245,14 @@ class MappingEngine {
   }
 
  private:
+  // d grows by at most one cell a step, so it passes at most one threshold.
+  static void count_threshold(Ray& r) {
+    if (r.d_q17 >= r.next_q17) {
+      r.k = r.k + uint<1>(1);
+      r.next_q17 = r.next_q17 + r.cell_q17;
+    }
+  }
+
   Settings settings_{};
   ScanPose pose_{};
   std::array<uint<17>, mapping::kQuarterTurn + 1> quarter_sine_{};

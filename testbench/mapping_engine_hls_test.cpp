@@ -14,33 +14,22 @@
 #include <vector>
 
 #include "hls/mapping_engine.hpp"
-#include "intgrid/core/narrow_ism.hpp"
 #include "intgrid/core/ray_insertion.hpp"
-#include "intgrid/core/resolution.hpp"
-#include "intgrid/core/seps.hpp"
-#include "intgrid/core/units.hpp"
-#include "intgrid/io/log_io.hpp"
+#include "testbench/mapping_engine_log.hpp"
 #include "testbench/mapping_engine_table.hpp"
 #if !defined(INTGRID_HLS_WIDTH_CHECK)
 #include "testbench/mapping_engine_hls_synth.hpp"
 #endif
-#include "tests/data_dir.hpp"
 
 namespace intgrid::hw {
 namespace {
 
 namespace hls = intgrid::hls;
-using core::ray_detail::floor_div;
 
-// The bundled log's SLAM settings (slam::SubmapSlamConfig's defaults): 5 cm cells, sigma 3 cm,
-// 8-bit indices, readings to 30 m in 6 mm bins, empty evidence divided by 4.
-constexpr std::int32_t kCellMm = 50;
-constexpr std::int32_t kZStepMm = 6;
-constexpr std::int32_t kMaxRangeMm = 30000;
-constexpr int kBins = kMaxRangeMm / kZStepMm + 2;
+constexpr std::int32_t kCellMm = kLogCellMm;
 constexpr int kTileBits = 8;
 constexpr int kTailCells = 1 << 16;
-using Engine = hls::MappingEngine<8, kTileBits, kBins, kTailCells>;
+using Engine = hls::MappingEngine<8, kTileBits, kLogBins, kTailCells>;
 
 // In the checked build: forget what came before this test, and at its end, that nothing
 // overflowed.
@@ -110,7 +99,7 @@ TEST(MappingEngineHls, RayWalkIsGoldensCellForCell) {
     core::IntegerRays(sine, c).walk(px, py, angle, limit, [&](int dx, int dy, std::int64_t d) {
       golden.emplace_back(dx, dy, (static_cast<std::int32_t>(d) + c / 2) / c);
     });
-    engine->configure({static_cast<std::uint32_t>(c), kZStepMm, kMaxRangeMm});
+    engine->configure({static_cast<std::uint32_t>(c), kLogZStepMm, kLogMaxRangeMm});
     engine->begin_scan({0, 0, px, py, 0});
     const std::uint32_t walked = engine->walk(
         hls::mapping::Angle(angle), limit, [&](auto dx, auto dy, hls::mapping::Count k) {
@@ -124,19 +113,10 @@ TEST(MappingEngineHls, RayWalkIsGoldensCellForCell) {
   EXPECT_GT(cells, 100000u);
 }
 
-core::SepsCodec telecom_codec() {
-  return core::SepsCodec::for_levels(8, core::narrow_pmax(kCellMm / 1000.0, 0.03), 16);
-}
-
-core::NarrowIsmTable telecom_table() {
-  return core::make_index_ism_table(core::GaussianBeamModel{0.03, 0.0}, kCellMm / 1000.0,
-                                    telecom_codec(), kZStepMm, kMaxRangeMm, 4);
-}
-
 TEST(MappingEngineHls, PackedIsmTableIsGoldensBinForBin) {
-  const core::NarrowIsmTable table = telecom_table();
+  const core::NarrowIsmTable table = log_ism_table();
   const PackedIsmTable packed = pack_ism_table(table);
-  ASSERT_EQ(packed.bins.size(), static_cast<std::size_t>(kBins));
+  ASSERT_EQ(packed.bins.size(), static_cast<std::size_t>(kLogBins));
   for (std::size_t bin = 0; bin < packed.bins.size(); ++bin) {
     const PackedIsmBin& b = packed.bins[bin];
     const std::int8_t* golden = table.values.data() + table.begin[bin];
@@ -152,67 +132,29 @@ TEST(MappingEngineHls, PackedIsmTableIsGoldensBinForBin) {
               packed.bins.size(), table.values.size(), packed.tail.size());
 }
 
-void load_table(Engine& engine, const PackedIsmTable& packed) {
-  ASSERT_LE(packed.tail.size(), static_cast<std::size_t>(kTailCells));
-  for (std::size_t bin = 0; bin < packed.bins.size(); ++bin) {
-    const PackedIsmBin& b = packed.bins[bin];
-    engine.load_bin(static_cast<int>(bin), {b.cells, b.core, b.constant, b.tail});
-  }
-  for (std::size_t i = 0; i < packed.tail.size(); ++i)
-    engine.load_tail(static_cast<int>(i), packed.tail[i]);
-}
-
 // Every scan of the bundled log at its reference pose, into a 12.8 m tile around the start.
 TEST(MappingEngineHls, BundledLogTileIsGoldensIntegerInsertion) {
   const WidthGuard guard;
-  const core::Log log =
-      io::read_log(std::string(test::data_dir()) + "/malaga_telecom_loop_reference.log");
-  const std::vector<std::int32_t> sine = core::make_sine_table_q16();
-  const core::IntegerRays rays(sine, kCellMm);
-  const core::NarrowIsmTable table = telecom_table();
-  const int max_index = telecom_codec().max_index();
-  const auto engine = engine_with_sine(sine);
-  engine->configure({kCellMm, kZStepMm, kMaxRangeMm});
-  load_table(*engine, pack_ism_table(table));
-  engine->clear();
-
   constexpr int kSide = Engine::kSide;
-  core::Grid<std::int8_t> golden({kSide, kSide, kCellMm / 1000.0, 0.0, 0.0}, 0);
-  // The tile's cell (0, 0) centre, half a tile from where the sensor starts.
-  const core::Pose2 start = log.scans.front().sensor_pose();
-  const double ox = start.x - kSide / 2 * kCellMm / 1000.0;
-  const double oy = start.y - kSide / 2 * kCellMm / 1000.0;
+  const EngineLog log = engine_log(kSide);
+  ASSERT_LE(log.packed.tail.size(), static_cast<std::size_t>(kTailCells));
+  const auto engine = std::make_unique<Engine>();
+  load_engine(*engine, log);
   std::uint64_t walked = 0, readings = 0;
-  for (const core::Scan& scan : log.scans) {
-    const core::Pose2 sensor = scan.sensor_pose();
-    const std::int64_t sx = core::millimetres(sensor.x - ox), sy = core::millimetres(sensor.y - oy);
-    const auto cx = static_cast<int>(floor_div<std::int64_t>(sx + kCellMm / 2, kCellMm));
-    const auto cy = static_cast<int>(floor_div<std::int64_t>(sy + kCellMm / 2, kCellMm));
-    const std::int64_t px = sx - std::int64_t{cx} * kCellMm, py = sy - std::int64_t{cy} * kCellMm;
-    const auto heading = static_cast<std::int32_t>(core::angle_units(sensor.theta) & 0xFFFF);
-    std::vector<std::int32_t> bearing, range_mm;
-    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-      bearing.push_back(static_cast<std::int32_t>(core::angle_units(scan.bearing(i)) & 0xFFFF));
-      const double r = scan.ranges[i];
-      range_mm.push_back(scan.is_valid_range(r) ? static_cast<std::int32_t>(core::millimetres(r))
-                                                : 0);
-    }
-    core::insert_scan_along_rays(golden, rays, table, cx, cy, px, py, heading, bearing, range_mm,
-                                 kMaxRangeMm, max_index);
-    engine->begin_scan({cx, cy, px, py, static_cast<std::uint32_t>(heading)});
-    for (std::size_t i = 0; i < bearing.size(); ++i) {
-      walked += engine->insert(
-          {static_cast<std::uint32_t>(bearing[i]), static_cast<std::uint32_t>(range_mm[i])});
-      readings += range_mm[i] > 0 ? 1 : 0;
+  for (const EngineScan& scan : log.scans) {
+    engine->begin_scan(scan.pose);
+    for (const hls::RangeReading& reading : scan.readings) {
+      walked += engine->insert(reading);
+      readings += reading.range_mm != 0 ? 1 : 0;
     }
   }
   std::size_t informed = 0, saturated = 0;
   for (int y = 0; y < kSide; ++y) {
     for (int x = 0; x < kSide; ++x) {
-      const std::int8_t g = golden.at(x, y);
+      const std::int8_t g = log.golden.at(x, y);
       ASSERT_EQ(engine->cell(x, y).value(), g) << "cell (" << x << ", " << y << ")";
       informed += g != 0 ? 1 : 0;
-      saturated += (g == max_index || g == -max_index) ? 1 : 0;
+      saturated += (g == log.max_index || g == -log.max_index) ? 1 : 0;
     }
   }
   // A real map: most of the tile seen, walls and free space saturated.
