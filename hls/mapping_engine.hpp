@@ -191,11 +191,14 @@ class MappingEngine {
     return walked;
   }
 
-  // Whether a reading is used (0 < z < the maximum range), and if so its range bin's ISM (the
+  // Whether a reading of z mm is used: 0 < z < the maximum range.
+  bool is_used(uint<mapping::kRangeBits> z) const { return z != 0 && z < settings_.max_range_mm; }
+
+  // Whether a reading is used, and if so its range bin's ISM (the
   // division is the one golden's table makes) and the length of its walk.
   bool reading_ism(uint<mapping::kRangeBits> z, Bin& ism,
                    uint<mapping::kRangeBits + 1>& limit_mm) const {
-    if (z == 0 || z >= settings_.max_range_mm) return false;
+    if (!is_used(z)) return false;
     const auto bin = static_cast<std::uint32_t>((z + shr<1>(settings_.z_step_mm)).value() /
                                                 settings_.z_step_mm.value());
     ism = bins_[bin];

@@ -3,6 +3,8 @@
 #                              random rays cell for cell, the packed ISM table, the bundled log's
 #                              scans into a tile cell for cell
 #   mapping_engine_width_test  the same with INTGRID_HLS_WIDTH_CHECK: no value leaves its width
+#   mapping_engine_sc_test     the SystemC model on the bundled log against golden, gaps and
+#                              back-pressure on its streams
 find_package(GTest REQUIRED)
 include(GoogleTest)
 
@@ -20,3 +22,11 @@ target_compile_definitions(mapping_engine_width_test PRIVATE INTGRID_HLS_WIDTH_C
 gtest_discover_tests(mapping_engine_cpp_test PROPERTIES LABELS hw DISCOVERY_TIMEOUT 60)
 gtest_discover_tests(mapping_engine_width_test TEST_PREFIX Width. PROPERTIES LABELS hw
                      DISCOVERY_TIMEOUT 60)
+
+# The SystemC model on the bundled log, random gaps and back-pressure (INTGRID_TB_SEED).
+add_executable(mapping_engine_sc_test mapping_engine_sc_test.cpp)
+target_link_libraries(mapping_engine_sc_test PRIVATE intgrid_systemc intgrid_core intgrid_io
+                                                     intgrid_test_data_dir)
+target_include_directories(mapping_engine_sc_test PRIVATE ${PROJECT_SOURCE_DIR})
+add_test(NAME mapping_engine_sc_test COMMAND mapping_engine_sc_test)
+set_tests_properties(mapping_engine_sc_test PROPERTIES LABELS hw)

@@ -1,0 +1,198 @@
+// The mapping engine's SystemC model (systemc/mapping_engine_module.hpp) on the bundled real log:
+// every scan at its reference pose sent as a pose beat and its readings, with random gaps in the
+// command stream, then the whole tile read out through the read port under random back-pressure
+// and compared, cell for cell, with golden's integer insertion of the same scans
+// (testbench/mapping_engine_log.hpp). Also checks that the model walked as many cells as the HLS
+// engine does for the same readings, and that the walk took one cell a cycle.
+//
+// Prints one JSON line (scans, readings, cells walked, cycles from the first beat to idle, cycles
+// a scan, cells walked a cycle, mismatches); exit status 0 when everything agrees, 1 otherwise.
+// INTGRID_TB_SEED reproduces a run.
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <random>
+
+#include <systemc>
+
+#include "systemc/mapping_engine_module.hpp"
+#include "testbench/mapping_engine_log.hpp"
+
+namespace {
+
+using namespace intgrid;
+using sc_core::sc_signal;
+
+constexpr int kTileBits = 8;
+constexpr int kSide = 1 << kTileBits;
+using Module = sc::MappingEngineModule<8, kTileBits, hw::kLogBins, 1 << 10>;
+using HlsEngine = Module::Engine;
+
+struct Bench : sc_core::sc_module {
+  sc_core::sc_in<bool> clk{"clk"};
+
+  sc_signal<bool> rst_n{"rst_n"}, in_valid{"in_valid"}, in_ready{"in_ready"}, in_pose{"in_pose"};
+  sc_signal<sc_dt::sc_int<hls::mapping::kCoordBits>> in_cx{"in_cx"}, in_cy{"in_cy"};
+  sc_signal<sc_dt::sc_int<hls::mapping::kCellBits + 1>> in_px{"in_px"}, in_py{"in_py"};
+  sc_signal<sc_dt::sc_uint<16>> in_angle{"in_angle"};
+  sc_signal<sc_dt::sc_uint<hls::mapping::kRangeBits>> in_range{"in_range"};
+  sc_signal<bool> rd_valid{"rd_valid"}, rd_ready{"rd_ready"}, rd_valid_out{"rd_valid_out"},
+      rd_ready_in{"rd_ready_in"}, idle{"idle"};
+  sc_signal<sc_dt::sc_uint<2 * kTileBits>> rd_addr{"rd_addr"};
+  sc_signal<sc_dt::sc_int<8>> rd_data{"rd_data"};
+
+  Module dut{"dut"};
+  const hw::EngineLog& log;
+  std::mt19937_64 rng;
+
+  // Progress, as members: nothing with a heap lives across a wait().
+  std::size_t scan = 0, reading = 0;  // the next beat: a pose when reading == 0 and not sent
+  bool pose_sent = false, sent_all = false;
+  std::uint32_t next_read = 0, cells_read = 0;
+  std::uint64_t mismatches = 0, first_beat_cycle = 0, idle_cycle = 0, cycle = 0;
+  bool done = false;
+
+  SC_HAS_PROCESS(Bench);
+  Bench(const sc_core::sc_module_name& name, const hw::EngineLog& engine_log, std::uint64_t seed)
+      : sc_core::sc_module(name), log(engine_log), rng(seed) {
+    dut.clk_i(clk);
+    dut.rst_ni(rst_n);
+    dut.in_valid_i(in_valid);
+    dut.in_ready_o(in_ready);
+    dut.in_pose_i(in_pose);
+    dut.in_cx_i(in_cx);
+    dut.in_cy_i(in_cy);
+    dut.in_px_i(in_px);
+    dut.in_py_i(in_py);
+    dut.in_angle_i(in_angle);
+    dut.in_range_i(in_range);
+    dut.rd_valid_i(rd_valid);
+    dut.rd_ready_o(rd_ready);
+    dut.rd_addr_i(rd_addr);
+    dut.rd_valid_o(rd_valid_out);
+    dut.rd_ready_i(rd_ready_in);
+    dut.rd_data_o(rd_data);
+    dut.idle_o(idle);
+    hw::load_engine(dut.engine(), log);
+    SC_CTHREAD(drive, clk.pos());
+  }
+
+  bool chance(int percent) { return static_cast<int>(rng() % 100) < percent; }
+
+  // The beat at (scan, reading) on the command stream's signals.
+  void present_beat() {
+    const hw::EngineScan& s = log.scans[scan];
+    in_pose.write(!pose_sent);
+    if (!pose_sent) {
+      in_cx.write(s.pose.cx.value());
+      in_cy.write(s.pose.cy.value());
+      in_px.write(s.pose.px.value());
+      in_py.write(s.pose.py.value());
+      in_angle.write(static_cast<std::uint32_t>(s.pose.heading.value()));
+    } else {
+      in_angle.write(static_cast<std::uint32_t>(s.readings[reading].bearing.value()));
+      in_range.write(static_cast<std::uint32_t>(s.readings[reading].range_mm.value()));
+    }
+  }
+  void next_beat() {
+    if (!pose_sent) {
+      pose_sent = true;
+    } else if (++reading == log.scans[scan].readings.size()) {
+      reading = 0;
+      pose_sent = false;
+      sent_all = ++scan == log.scans.size();
+    }
+  }
+
+  void drive() {
+    rst_n.write(false);
+    in_valid.write(false);
+    rd_valid.write(false);
+    rd_ready_in.write(false);
+    wait();
+    wait();
+    rst_n.write(true);
+    while (!done) {
+      wait();
+      ++cycle;
+      edge();
+    }
+    sc_core::sc_stop();
+    while (true) wait();
+  }
+
+  // After each rising edge: what fired at it, then the next cycle's inputs.
+  void edge() {
+    // The command stream: a beat fired at this edge if it was valid and the slot was empty.
+    if (in_valid.read() && in_ready.read()) {
+      if (first_beat_cycle == 0) first_beat_cycle = cycle;
+      next_beat();
+    }
+    if (!sent_all) {
+      const bool hold = in_valid.read() && !in_ready.read();  // valid stays up until taken
+      in_valid.write(hold || chance(75));
+      if (!hold) present_beat();
+    } else {
+      in_valid.write(false);
+    }
+    // The read port, once everything was sent and the engine is idle.
+    if (rd_valid_out.read() && rd_ready_in.read()) {
+      const std::uint32_t address = cells_read++;
+      const int x = static_cast<int>(address % kSide), y = static_cast<int>(address / kSide);
+      if (rd_data.read().to_int() != log.golden.at(x, y)) {
+        if (mismatches < 5)
+          std::fprintf(stderr, "cell (%d, %d): model %d, golden %d\n", x, y,
+                       rd_data.read().to_int(), log.golden.at(x, y));
+        ++mismatches;
+      }
+      if (cells_read == kSide * kSide) done = true;
+    }
+    if (rd_valid.read() && rd_ready.read()) ++next_read;
+    if (sent_all && idle.read() && !in_valid.read() && idle_cycle == 0) idle_cycle = cycle;
+    const bool reading_out = idle_cycle != 0 && next_read < kSide * kSide;
+    rd_valid.write(reading_out && chance(80));
+    rd_addr.write(next_read);
+    rd_ready_in.write(chance(70));
+  }
+};
+
+}  // namespace
+
+int sc_main(int, char*[]) {
+  const char* seed_text = std::getenv("INTGRID_TB_SEED");
+  const std::uint64_t seed = seed_text != nullptr ? std::strtoull(seed_text, nullptr, 10) : 1;
+  const hw::EngineLog log = hw::engine_log(kSide);
+  // The oracle of the walk's length: the HLS engine on the same readings.
+  std::uint64_t walked = 0, readings = 0;
+  {
+    const auto engine = std::make_unique<HlsEngine>();
+    hw::load_engine(*engine, log);
+    for (const hw::EngineScan& s : log.scans) {
+      engine->begin_scan(s.pose);
+      for (const hls::RangeReading& r : s.readings) {
+        walked += engine->insert(r);
+        readings += 1;
+      }
+    }
+  }
+  sc_core::sc_clock clk("clk", 10, sc_core::SC_NS);
+  const auto bench = std::make_unique<Bench>("bench", log, seed);
+  bench->clk(clk);
+  sc_core::sc_start();
+  const std::uint64_t busy = bench->idle_cycle - bench->first_beat_cycle;
+  const bool walk_agrees = bench->dut.cells_walked() == walked;
+  std::printf(
+      "{\"seed\": %llu, \"scans\": %zu, \"readings\": %llu, \"cells_walked\": %llu, "
+      "\"cycles\": %llu, \"cycles_per_scan\": %.0f, \"cells_per_cycle\": %.3f, "
+      "\"cells_read\": %u, \"mismatches\": %llu, \"walk_agrees_with_hls\": %s}\n",
+      static_cast<unsigned long long>(seed), log.scans.size(),
+      static_cast<unsigned long long>(readings),
+      static_cast<unsigned long long>(bench->dut.cells_walked()),
+      static_cast<unsigned long long>(busy),
+      static_cast<double>(busy) / static_cast<double>(log.scans.size()),
+      static_cast<double>(bench->dut.cells_walked()) / static_cast<double>(busy), bench->cells_read,
+      static_cast<unsigned long long>(bench->mismatches), walk_agrees ? "true" : "false");
+  const bool ok = bench->done && bench->mismatches == 0 && walk_agrees && busy >= walked;
+  return ok ? 0 : 1;
+}
