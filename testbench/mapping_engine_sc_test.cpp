@@ -5,6 +5,8 @@
 // (testbench/mapping_engine_log.hpp). Also checks that the model walked as many cells as the HLS
 // engine does for the same readings, and that the walk took one cell a cycle.
 //
+// The memories are loaded through the load port while the tile clears after reset.
+//
 // Prints one JSON line (scans, readings, cells walked, cycles from the first beat to idle, cycles
 // a scan, cells walked a cycle, mismatches); exit status 0 when everything agrees, 1 otherwise.
 // INTGRID_TB_SEED reproduces a run.
@@ -13,6 +15,7 @@
 #include <cstdlib>
 #include <memory>
 #include <random>
+#include <vector>
 
 #include <systemc>
 
@@ -41,11 +44,22 @@ struct Bench : sc_core::sc_module {
       rd_ready_in{"rd_ready_in"}, idle{"idle"};
   sc_signal<sc_dt::sc_uint<2 * kTileBits>> rd_addr{"rd_addr"};
   sc_signal<sc_dt::sc_int<8>> rd_data{"rd_data"};
+  sc_signal<bool> ld_valid{"ld_valid"};
+  sc_signal<sc_dt::sc_uint<2>> ld_target{"ld_target"};
+  sc_signal<sc_dt::sc_uint<16>> ld_addr{"ld_addr"};
+  sc_signal<sc_dt::sc_uint<64>> ld_data{"ld_data"};
 
   Module dut{"dut"};
   const hw::EngineLog& log;
   std::mt19937_64 rng;
 
+  // The load port's writes: the settings, the quarter-wave sine, the packed ISM table.
+  struct Load {
+    unsigned target, address;
+    std::uint64_t data;
+  };
+  std::vector<Load> loads;
+  std::size_t next_load = 0;
   // Progress, as members: nothing with a heap lives across a wait().
   std::size_t scan = 0, reading = 0;  // the next beat: a pose when reading == 0 and not sent
   bool pose_sent = false, sent_all = false;
@@ -74,7 +88,24 @@ struct Bench : sc_core::sc_module {
     dut.rd_ready_i(rd_ready_in);
     dut.rd_data_o(rd_data);
     dut.idle_o(idle);
-    hw::load_engine(dut.engine(), log);
+    dut.ld_valid_i(ld_valid);
+    dut.ld_target_i(ld_target);
+    dut.ld_addr_i(ld_addr);
+    dut.ld_data_i(ld_data);
+    loads = {{0, 0, hw::kLogCellMm}, {0, 1, hw::kLogZStepMm}, {0, 2, hw::kLogMaxRangeMm}};
+    for (unsigned a = 0; a <= hls::mapping::kQuarterTurn; ++a)
+      loads.push_back({1, a, static_cast<std::uint64_t>(log.sine[a])});
+    for (std::size_t bin = 0; bin < log.packed.bins.size(); ++bin) {
+      const hw::PackedIsmBin& b = log.packed.bins[bin];
+      constexpr int kCount = Module::kCountBits;
+      loads.push_back({2, static_cast<unsigned>(bin),
+                       b.cells | (std::uint64_t{b.core} << kCount) |
+                           (std::uint64_t{static_cast<std::uint8_t>(b.constant)} << (2 * kCount)) |
+                           (std::uint64_t{b.tail} << (2 * kCount + 8))});
+    }
+    for (std::size_t i = 0; i < log.packed.tail.size(); ++i)
+      loads.push_back({3, static_cast<unsigned>(i),
+                       static_cast<std::uint64_t>(static_cast<std::uint8_t>(log.packed.tail[i]))});
     SC_CTHREAD(drive, clk.pos());
   }
 
@@ -108,6 +139,7 @@ struct Bench : sc_core::sc_module {
   void drive() {
     rst_n.write(false);
     in_valid.write(false);
+    ld_valid.write(false);
     rd_valid.write(false);
     rd_ready_in.write(false);
     wait();
@@ -124,6 +156,14 @@ struct Bench : sc_core::sc_module {
 
   // After each rising edge: what fired at it, then the next cycle's inputs.
   void edge() {
+    // The load port, one write a cycle from the first cycle out of reset.
+    ld_valid.write(next_load < loads.size());
+    if (next_load < loads.size()) {
+      ld_target.write(loads[next_load].target);
+      ld_addr.write(loads[next_load].address);
+      ld_data.write(loads[next_load].data);
+      ++next_load;
+    }
     // The command stream: a beat fired at this edge if it was valid and the slot was empty.
     if (in_valid.read() && in_ready.read()) {
       if (first_beat_cycle == 0) first_beat_cycle = cycle;
