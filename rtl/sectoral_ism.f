@@ -3,7 +3,7 @@
 // A configuration adds its parameters: -f config/<name>/sectoral_ism_<name>.vc (from rtl/).
 sectoral_ism_pkg.sv
 sectoral_ism_rom.sv
-sectoral_ism_ram.sv
+sdp_ram.sv
 spill_register.sv
 sectoral_ism_mul.sv
 sectoral_ism_density.sv

@@ -139,7 +139,7 @@ module sectoral_ism #(
     .idx_wdata_o (idx_wdata)
   );
 
-  sectoral_ism_ram #(.WIDTH(IDX_W), .DEPTH(2 << IDX_AW)) i_index_ram (
+  sdp_ram #(.WIDTH(IDX_W), .DEPTH(2 << IDX_AW)) i_index_ram (
     .clk_i,
     .we_i    (idx_we),
     .waddr_i ({wb_q, idx_waddr}),

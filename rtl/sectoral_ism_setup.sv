@@ -232,15 +232,15 @@ module sectoral_ism_setup #(
   logic [RIDX_W+CJ_W-1:0] cond_waddr, cond_raddr;
   logic [LV-1:0]     t_wdata, cond_wdata, after_wdata, t_rdata, cond_rdata, after_rdata;
 
-  sectoral_ism_ram #(.WIDTH(LV), .DEPTH(RINGS)) i_t_ram (
+  sdp_ram #(.WIDTH(LV), .DEPTH(RINGS)) i_t_ram (
     .clk_i, .we_i(t_we), .waddr_i(t_waddr), .wdata_i(t_wdata),
     .re_i(t_re), .raddr_i(t_raddr), .rdata_o(t_rdata)
   );
-  sectoral_ism_ram #(.WIDTH(LV), .DEPTH(RINGS << CJ_W)) i_cond_ram (
+  sdp_ram #(.WIDTH(LV), .DEPTH(RINGS << CJ_W)) i_cond_ram (
     .clk_i, .we_i(cond_we), .waddr_i(cond_waddr), .wdata_i(cond_wdata),
     .re_i(cond_re), .raddr_i(cond_raddr), .rdata_o(cond_rdata)
   );
-  sectoral_ism_ram #(.WIDTH(LV), .DEPTH(RINGS)) i_after_ram (
+  sdp_ram #(.WIDTH(LV), .DEPTH(RINGS)) i_after_ram (
     .clk_i, .we_i(after_we), .waddr_i(after_waddr), .wdata_i(after_wdata),
     .re_i(after_re), .raddr_i(after_raddr), .rdata_o(after_rdata)
   );

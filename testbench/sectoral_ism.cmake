@@ -24,7 +24,7 @@ include(GoogleTest)
 set(_ism_rtl_dir ${PROJECT_SOURCE_DIR}/rtl)
 # The order of rtl/sectoral_ism.f (the package first); rtl_manifest_sectoral_ism holds the
 # manifests to this list.
-set(_ism_rtl_files sectoral_ism_pkg.sv sectoral_ism_rom.sv sectoral_ism_ram.sv spill_register.sv
+set(_ism_rtl_files sectoral_ism_pkg.sv sectoral_ism_rom.sv sdp_ram.sv spill_register.sv
     sectoral_ism_mul.sv sectoral_ism_density.sv sectoral_ism_log_add.sv sectoral_ism_index.sv
     sectoral_ism_setup.sv sectoral_ism_stream.sv sectoral_ism.sv)
 list(TRANSFORM _ism_rtl_files PREPEND ${_ism_rtl_dir}/ OUTPUT_VARIABLE _ism_rtl)

@@ -1,6 +1,6 @@
 // Formal harness of the ISM output stage, rtl/sectoral_ism_stream.sv (stage 1, the bank's
 // registered read, and the spill register), on a small configuration, with the index RAM
-// modelled as in rtl/sectoral_ism_ram.sv (a registered read that holds while re is low) over a
+// modelled as in rtl/sdp_ram.sv (a registered read that holds while re is low) over a
 // bank content that is an unconstrained input. The environment is that of rtl/sectoral_ism.sv:
 // once a bank is full it stays full, with the same window, below index and content, until the
 // stream releases it; after the release anything may follow. Resets may come at any cycle.

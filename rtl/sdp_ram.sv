@@ -1,7 +1,7 @@
 // A simple dual-port memory (one write port, one registered read port that holds while
 // re_i is low), for iCE40 block RAM. A read of the address being written returns old data;
-// the kernel never does that.
-module sectoral_ism_ram #(
+// the kernels never do that.
+module sdp_ram #(
   parameter int unsigned WIDTH = 8,
   parameter int unsigned DEPTH = 256,
   localparam int unsigned AW   = (DEPTH > 1) ? $clog2(DEPTH) : 1
@@ -15,7 +15,7 @@ module sectoral_ism_ram #(
   output logic [WIDTH-1:0] rdata_o
 );
   if (WIDTH < 1 || DEPTH < 1) begin : gen_check_size
-    $error("sectoral_ism_ram: WIDTH and DEPTH must be at least 1");
+    $error("sdp_ram: WIDTH and DEPTH must be at least 1");
   end
 
   logic [WIDTH-1:0] mem_q [0:DEPTH-1];
