@@ -1,9 +1,13 @@
-// The mapping engine's SystemC model (systemc/mapping_engine_module.hpp) on the bundled real log:
-// every scan at its reference pose sent as a pose beat and its readings, with random gaps in the
-// command stream, then the whole tile read out through the read port under random back-pressure
-// and compared, cell for cell, with golden's integer insertion of the same scans
-// (testbench/mapping_engine_log.hpp). Also checks that the model walked as many cells as the HLS
-// engine does for the same readings, and that the walk took one cell a cycle.
+// Co-simulation of the mapping engine on the bundled real log: the Verilated RTL
+// (rtl/mapping_engine.sv, verilator --sc) and the SystemC model (systemc/mapping_engine_module.hpp)
+// on one clock, driven by one stimulus: every scan at its reference pose sent as a pose beat and
+// its readings, with random gaps in the command stream, then the whole tile read out through the
+// read port under random back-pressure and compared, cell for cell, with golden's integer
+// insertion of the same scans (testbench/mapping_engine_log.hpp). The two are compared with each
+// other before every rising edge: in_ready, rd_ready, rd_valid and idle, and rd_data while
+// rd_valid. Also checks that the model walked as many cells as the HLS engine does for the same
+// readings. Data inputs have one signal per model, written together (the Verilated ports are
+// Verilator's integer types, the model's sc_int/sc_uint).
 //
 // The memories are loaded through the load port while the tile clears after reset.
 //
@@ -19,6 +23,7 @@
 
 #include <systemc>
 
+#include "Vmapping_engine_sc.h"
 #include "systemc/mapping_engine_module.hpp"
 #include "testbench/mapping_engine_log.hpp"
 
@@ -48,8 +53,17 @@ struct Bench : sc_core::sc_module {
   sc_signal<sc_dt::sc_uint<2>> ld_target{"ld_target"};
   sc_signal<sc_dt::sc_uint<16>> ld_addr{"ld_addr"};
   sc_signal<sc_dt::sc_uint<64>> ld_data{"ld_data"};
+  // The RTL's data inputs and outputs.
+  sc_signal<std::uint32_t> rtl_cx{"rtl_cx"}, rtl_cy{"rtl_cy"}, rtl_px{"rtl_px"}, rtl_py{"rtl_py"},
+      rtl_angle{"rtl_angle"}, rtl_range{"rtl_range"}, rtl_rd_addr{"rtl_rd_addr"},
+      rtl_ld_target{"rtl_ld_target"}, rtl_ld_addr{"rtl_ld_addr"}, rtl_rd_data{"rtl_rd_data"};
+  sc_signal<std::uint64_t> rtl_ld_data{"rtl_ld_data"};
+  sc_signal<bool> rtl_in_ready{"rtl_in_ready"}, rtl_rd_ready{"rtl_rd_ready"},
+      rtl_rd_valid{"rtl_rd_valid"}, rtl_idle{"rtl_idle"};
 
   Module dut{"dut"};
+  Vmapping_engine_sc rtl{"rtl"};
+  std::uint64_t cycle_mismatches = 0;
   const hw::EngineLog& log;
   std::mt19937_64 rng;
 
@@ -92,6 +106,28 @@ struct Bench : sc_core::sc_module {
     dut.ld_target_i(ld_target);
     dut.ld_addr_i(ld_addr);
     dut.ld_data_i(ld_data);
+    rtl.clk_i(clk);
+    rtl.rst_ni(rst_n);
+    rtl.in_valid_i(in_valid);
+    rtl.in_ready_o(rtl_in_ready);
+    rtl.in_pose_i(in_pose);
+    rtl.in_cx_i(rtl_cx);
+    rtl.in_cy_i(rtl_cy);
+    rtl.in_px_i(rtl_px);
+    rtl.in_py_i(rtl_py);
+    rtl.in_angle_i(rtl_angle);
+    rtl.in_range_i(rtl_range);
+    rtl.rd_valid_i(rd_valid);
+    rtl.rd_ready_o(rtl_rd_ready);
+    rtl.rd_addr_i(rtl_rd_addr);
+    rtl.rd_valid_o(rtl_rd_valid);
+    rtl.rd_ready_i(rd_ready_in);
+    rtl.rd_data_o(rtl_rd_data);
+    rtl.idle_o(rtl_idle);
+    rtl.ld_valid_i(ld_valid);
+    rtl.ld_target_i(rtl_ld_target);
+    rtl.ld_addr_i(rtl_ld_addr);
+    rtl.ld_data_i(rtl_ld_data);
     loads = {{0, 0, hw::kLogCellMm}, {0, 1, hw::kLogZStepMm}, {0, 2, hw::kLogMaxRangeMm}};
     for (unsigned a = 0; a <= hls::mapping::kQuarterTurn; ++a)
       loads.push_back({1, a, static_cast<std::uint64_t>(log.sine[a])});
@@ -111,6 +147,11 @@ struct Bench : sc_core::sc_module {
 
   bool chance(int percent) { return static_cast<int>(rng() % 100) < percent; }
 
+  // A field's two's-complement pattern on the RTL's port.
+  static std::uint32_t pattern(std::int64_t v, int bits) {
+    return static_cast<std::uint32_t>(v) & ((std::uint32_t{1} << bits) - 1u);
+  }
+
   // The beat at (scan, reading) on the command stream's signals.
   void present_beat() {
     const hw::EngineScan& s = log.scans[scan];
@@ -121,9 +162,34 @@ struct Bench : sc_core::sc_module {
       in_px.write(s.pose.px.value());
       in_py.write(s.pose.py.value());
       in_angle.write(static_cast<std::uint32_t>(s.pose.heading.value()));
+      rtl_cx.write(pattern(s.pose.cx.value(), hls::mapping::kCoordBits));
+      rtl_cy.write(pattern(s.pose.cy.value(), hls::mapping::kCoordBits));
+      rtl_px.write(pattern(s.pose.px.value(), hls::mapping::kCellBits + 1));
+      rtl_py.write(pattern(s.pose.py.value(), hls::mapping::kCellBits + 1));
+      rtl_angle.write(static_cast<std::uint32_t>(s.pose.heading.value()));
     } else {
       in_angle.write(static_cast<std::uint32_t>(s.readings[reading].bearing.value()));
       in_range.write(static_cast<std::uint32_t>(s.readings[reading].range_mm.value()));
+      rtl_angle.write(static_cast<std::uint32_t>(s.readings[reading].bearing.value()));
+      rtl_range.write(static_cast<std::uint32_t>(s.readings[reading].range_mm.value()));
+    }
+  }
+
+  // The two models' outputs before this edge.
+  void compare() {
+    const bool same =
+        rtl_in_ready.read() == in_ready.read() && rtl_rd_ready.read() == rd_ready.read() &&
+        rtl_rd_valid.read() == rd_valid_out.read() && rtl_idle.read() == idle.read() &&
+        (!rd_valid_out.read() ||
+         static_cast<std::int8_t>(rtl_rd_data.read()) == rd_data.read().to_int());
+    if (!same && cycle_mismatches++ < 5) {
+      std::fprintf(stderr,
+                   "cycle %llu: in_ready %d/%d rd_ready %d/%d rd_valid %d/%d idle %d/%d rd_data "
+                   "%d/%d (RTL/model)\n",
+                   static_cast<unsigned long long>(cycle), rtl_in_ready.read(), in_ready.read(),
+                   rtl_rd_ready.read(), rd_ready.read(), rtl_rd_valid.read(), rd_valid_out.read(),
+                   rtl_idle.read(), idle.read(), static_cast<std::int8_t>(rtl_rd_data.read()),
+                   rd_data.read().to_int());
     }
   }
   void next_beat() {
@@ -156,12 +222,16 @@ struct Bench : sc_core::sc_module {
 
   // After each rising edge: what fired at it, then the next cycle's inputs.
   void edge() {
+    compare();
     // The load port, one write a cycle from the first cycle out of reset.
     ld_valid.write(next_load < loads.size());
     if (next_load < loads.size()) {
       ld_target.write(loads[next_load].target);
       ld_addr.write(loads[next_load].address);
       ld_data.write(loads[next_load].data);
+      rtl_ld_target.write(loads[next_load].target);
+      rtl_ld_addr.write(loads[next_load].address);
+      rtl_ld_data.write(loads[next_load].data);
       ++next_load;
     }
     // The command stream: a beat fired at this edge if it was valid and the slot was empty.
@@ -193,6 +263,7 @@ struct Bench : sc_core::sc_module {
     const bool reading_out = idle_cycle != 0 && next_read < kSide * kSide;
     rd_valid.write(reading_out && chance(80));
     rd_addr.write(next_read);
+    rtl_rd_addr.write(next_read & (kSide * kSide - 1u));
     rd_ready_in.write(chance(70));
   }
 };
@@ -225,14 +296,17 @@ int sc_main(int, char*[]) {
   std::printf(
       "{\"seed\": %llu, \"scans\": %zu, \"readings\": %llu, \"cells_walked\": %llu, "
       "\"cycles\": %llu, \"cycles_per_scan\": %.0f, \"cells_per_cycle\": %.3f, "
-      "\"cells_read\": %u, \"mismatches\": %llu, \"walk_agrees_with_hls\": %s}\n",
+      "\"cells_read\": %u, \"mismatches\": %llu, \"rtl_model_cycle_mismatches\": %llu, "
+      "\"walk_agrees_with_hls\": %s}\n",
       static_cast<unsigned long long>(seed), log.scans.size(),
       static_cast<unsigned long long>(readings),
       static_cast<unsigned long long>(bench->dut.cells_walked()),
       static_cast<unsigned long long>(busy),
       static_cast<double>(busy) / static_cast<double>(log.scans.size()),
       static_cast<double>(bench->dut.cells_walked()) / static_cast<double>(busy), bench->cells_read,
-      static_cast<unsigned long long>(bench->mismatches), walk_agrees ? "true" : "false");
-  const bool ok = bench->done && bench->mismatches == 0 && walk_agrees && busy >= walked;
+      static_cast<unsigned long long>(bench->mismatches),
+      static_cast<unsigned long long>(bench->cycle_mismatches), walk_agrees ? "true" : "false");
+  const bool ok = bench->done && bench->mismatches == 0 && bench->cycle_mismatches == 0 &&
+                  walk_agrees && busy >= walked;
   return ok ? 0 : 1;
 }
