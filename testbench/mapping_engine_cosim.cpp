@@ -66,6 +66,7 @@ struct Bench : sc_core::sc_module {
   std::uint64_t cycle_mismatches = 0;
   const hw::EngineLog& log;
   std::mt19937_64 rng;
+  int* running;  // benches not finished yet
 
   // The load port's writes: the settings, the quarter-wave sine, the packed ISM table.
   struct Load {
@@ -82,8 +83,9 @@ struct Bench : sc_core::sc_module {
   bool done = false;
 
   SC_HAS_PROCESS(Bench);
-  Bench(const sc_core::sc_module_name& name, const hw::EngineLog& engine_log, std::uint64_t seed)
-      : sc_core::sc_module(name), log(engine_log), rng(seed) {
+  Bench(const sc_core::sc_module_name& name, const hw::EngineLog& engine_log, std::uint64_t seed,
+        int* benches_running)
+      : sc_core::sc_module(name), log(engine_log), rng(seed), running(benches_running) {
     dut.clk_i(clk);
     dut.rst_ni(rst_n);
     dut.in_valid_i(in_valid);
@@ -216,7 +218,7 @@ struct Bench : sc_core::sc_module {
       ++cycle;
       edge();
     }
-    sc_core::sc_stop();
+    if (--*running == 0) sc_core::sc_stop();  // the last bench to finish ends the simulation
     while (true) wait();
   }
 
@@ -268,45 +270,57 @@ struct Bench : sc_core::sc_module {
   }
 };
 
+// The HLS engine's walk over a stimulus: the oracle of the model's walked cells.
+std::uint64_t cells_walked_by_hls(const hw::EngineLog& log) {
+  const auto engine = std::make_unique<HlsEngine>();
+  hw::load_engine(*engine, log);
+  std::uint64_t walked = 0;
+  for (const hw::EngineScan& s : log.scans) {
+    engine->begin_scan(s.pose);
+    for (const hls::RangeReading& r : s.readings) walked += engine->insert(r);
+  }
+  return walked;
+}
+
+// One bench's line; true when it agrees with golden, the HLS walk and itself across the models.
+bool report(const char* stimulus, const Bench& bench, std::uint64_t seed) {
+  std::uint64_t readings = 0;
+  for (const hw::EngineScan& s : bench.log.scans) readings += s.readings.size();
+  const std::uint64_t walked = cells_walked_by_hls(bench.log);
+  const std::uint64_t busy = bench.idle_cycle - bench.first_beat_cycle;
+  const bool walk_agrees = bench.dut.cells_walked() == walked;
+  std::printf(
+      "{\"stimulus\": \"%s\", \"seed\": %llu, \"scans\": %zu, \"readings\": %llu, "
+      "\"cells_walked\": %llu, \"cycles\": %llu, \"cycles_per_scan\": %.0f, "
+      "\"cells_per_cycle\": %.3f, \"cells_read\": %u, \"mismatches\": %llu, "
+      "\"rtl_model_cycle_mismatches\": %llu, \"walk_agrees_with_hls\": %s}\n",
+      stimulus, static_cast<unsigned long long>(seed), bench.log.scans.size(),
+      static_cast<unsigned long long>(readings),
+      static_cast<unsigned long long>(bench.dut.cells_walked()),
+      static_cast<unsigned long long>(busy),
+      static_cast<double>(busy) / static_cast<double>(bench.log.scans.size()),
+      static_cast<double>(bench.dut.cells_walked()) / static_cast<double>(busy), bench.cells_read,
+      static_cast<unsigned long long>(bench.mismatches),
+      static_cast<unsigned long long>(bench.cycle_mismatches), walk_agrees ? "true" : "false");
+  return bench.done && bench.mismatches == 0 && bench.cycle_mismatches == 0 && walk_agrees &&
+         busy >= walked;
+}
+
 }  // namespace
 
 int sc_main(int, char*[]) {
   const char* seed_text = std::getenv("INTGRID_TB_SEED");
   const std::uint64_t seed = seed_text != nullptr ? std::strtoull(seed_text, nullptr, 10) : 1;
   const hw::EngineLog log = hw::engine_log(kSide);
-  // The oracle of the walk's length: the HLS engine on the same readings.
-  std::uint64_t walked = 0, readings = 0;
-  {
-    const auto engine = std::make_unique<HlsEngine>();
-    hw::load_engine(*engine, log);
-    for (const hw::EngineScan& s : log.scans) {
-      engine->begin_scan(s.pose);
-      for (const hls::RangeReading& r : s.readings) {
-        walked += engine->insert(r);
-        readings += 1;
-      }
-    }
-  }
+  const hw::EngineLog ties = hw::tie_scans(kSide);
   sc_core::sc_clock clk("clk", 10, sc_core::SC_NS);
-  const auto bench = std::make_unique<Bench>("bench", log, seed);
-  bench->clk(clk);
+  int running = 2;
+  const auto log_bench = std::make_unique<Bench>("log_bench", log, seed, &running);
+  const auto tie_bench = std::make_unique<Bench>("tie_bench", ties, seed + 1, &running);
+  log_bench->clk(clk);
+  tie_bench->clk(clk);
   sc_core::sc_start();
-  const std::uint64_t busy = bench->idle_cycle - bench->first_beat_cycle;
-  const bool walk_agrees = bench->dut.cells_walked() == walked;
-  std::printf(
-      "{\"seed\": %llu, \"scans\": %zu, \"readings\": %llu, \"cells_walked\": %llu, "
-      "\"cycles\": %llu, \"cycles_per_scan\": %.0f, \"cells_per_cycle\": %.3f, "
-      "\"cells_read\": %u, \"mismatches\": %llu, \"rtl_model_cycle_mismatches\": %llu, "
-      "\"walk_agrees_with_hls\": %s}\n",
-      static_cast<unsigned long long>(seed), log.scans.size(),
-      static_cast<unsigned long long>(readings),
-      static_cast<unsigned long long>(bench->dut.cells_walked()),
-      static_cast<unsigned long long>(busy),
-      static_cast<double>(busy) / static_cast<double>(log.scans.size()),
-      static_cast<double>(bench->dut.cells_walked()) / static_cast<double>(busy), bench->cells_read,
-      static_cast<unsigned long long>(bench->mismatches),
-      static_cast<unsigned long long>(bench->cycle_mismatches), walk_agrees ? "true" : "false");
-  const bool ok = bench->done && bench->mismatches == 0 && bench->cycle_mismatches == 0 &&
-                  walk_agrees && busy >= walked;
-  return ok ? 0 : 1;
+  const bool log_ok = report("bundled log", *log_bench, seed);
+  const bool ties_ok = report("ties", *tie_bench, seed);
+  return log_ok && ties_ok ? 0 : 1;
 }

@@ -51,17 +51,39 @@ struct EngineLog {
   int max_index = 0;
 };
 
-// The scans of data/malaga_telecom_loop_reference.log in a side x side tile.
-inline EngineLog engine_log(int side) {
+// The tables, and an empty side x side tile, of the bundled log's settings.
+inline EngineLog empty_engine_log(int side) {
   EngineLog out;
-  const core::Log log =
-      io::read_log(std::string(test::data_dir()) + "/malaga_telecom_loop_reference.log");
   out.sine = core::make_sine_table_q16();
   out.table = log_ism_table();
   out.packed = pack_ism_table(out.table);
   out.max_index = log_codec().max_index();
   out.golden = core::Grid<std::int8_t>({side, side, kLogCellMm / 1000.0, 0.0, 0.0}, 0);
+  return out;
+}
+
+// Golden's tile of out.scans: core::insert_scan_along_rays of each, in order.
+inline void insert_golden(EngineLog& out) {
   const core::IntegerRays rays(out.sine, kLogCellMm);
+  for (const EngineScan& scan : out.scans) {
+    std::vector<std::int32_t> bearing, range_mm;
+    for (const hls::RangeReading& r : scan.readings) {
+      bearing.push_back(static_cast<std::int32_t>(r.bearing.value()));
+      range_mm.push_back(static_cast<std::int32_t>(r.range_mm.value()));
+    }
+    core::insert_scan_along_rays(
+        out.golden, rays, out.table, static_cast<int>(scan.pose.cx.value()),
+        static_cast<int>(scan.pose.cy.value()), scan.pose.px.value(), scan.pose.py.value(),
+        static_cast<std::int32_t>(scan.pose.heading.value()), bearing, range_mm, kLogMaxRangeMm,
+        out.max_index);
+  }
+}
+
+// The scans of data/malaga_telecom_loop_reference.log in a side x side tile.
+inline EngineLog engine_log(int side) {
+  EngineLog out = empty_engine_log(side);
+  const core::Log log =
+      io::read_log(std::string(test::data_dir()) + "/malaga_telecom_loop_reference.log");
   // The tile's cell (0, 0) centre, half a tile from where the sensor starts.
   const core::Pose2 start = log.scans.front().sensor_pose();
   const double ox = start.x - side / 2 * kLogCellMm / 1000.0;
@@ -74,22 +96,45 @@ inline EngineLog engine_log(int side) {
     const auto cy = static_cast<int>(floor_div<std::int64_t>(sy + kLogCellMm / 2, kLogCellMm));
     const std::int64_t px = sx - std::int64_t{cx} * kLogCellMm;
     const std::int64_t py = sy - std::int64_t{cy} * kLogCellMm;
-    const auto heading = static_cast<std::int32_t>(core::angle_units(sensor.theta) & 0xFFFF);
-    std::vector<std::int32_t> bearing, range_mm;
+    const auto heading = static_cast<std::uint32_t>(core::angle_units(sensor.theta) & 0xFFFF);
     EngineScan engine_scan;
-    engine_scan.pose = {cx, cy, px, py, static_cast<std::uint32_t>(heading)};
+    engine_scan.pose = {cx, cy, px, py, heading};
     for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-      bearing.push_back(static_cast<std::int32_t>(core::angle_units(scan.bearing(i)) & 0xFFFF));
       const double r = scan.ranges[i];
-      range_mm.push_back(scan.is_valid_range(r) ? static_cast<std::int32_t>(core::millimetres(r))
-                                                : 0);
-      engine_scan.readings.push_back({static_cast<std::uint32_t>(bearing.back()),
-                                      static_cast<std::uint32_t>(range_mm.back())});
+      engine_scan.readings.push_back(
+          {static_cast<std::uint32_t>(core::angle_units(scan.bearing(i)) & 0xFFFF),
+           scan.is_valid_range(r) ? static_cast<std::uint32_t>(core::millimetres(r)) : 0u});
     }
-    core::insert_scan_along_rays(out.golden, rays, out.table, cx, cy, px, py, heading, bearing,
-                                 range_mm, kLogMaxRangeMm, out.max_index);
     out.scans.push_back(std::move(engine_scan));
   }
+  insert_golden(out);
+  return out;
+}
+
+// Scans whose rays land exactly on the engine's decisions, which a real log seldom shows: the
+// sensor on a cell's edge or corner (an offset of -c/2), rays along the axes (the projection d
+// then meets a line-of-sight threshold (m c - c/2) exactly) and the diagonals (both boundaries
+// met at once), and one angle unit off them; a few ranges each.
+inline EngineLog tie_scans(int side) {
+  EngineLog out = empty_engine_log(side);
+  constexpr std::int32_t kHalf = kLogCellMm / 2;
+  const std::int32_t offsets[][2] = {
+      {-kHalf, -kHalf}, {-kHalf, 0}, {0, -kHalf}, {0, 0}, {kHalf - 1, -kHalf}};
+  for (const auto& offset : offsets) {
+    for (const std::uint32_t heading : {0u, 8192u, 16384u}) {
+      EngineScan scan;
+      scan.pose = {side / 2, side / 2, offset[0], offset[1], heading};
+      for (std::uint32_t direction = 0; direction < 8; ++direction) {
+        for (const std::uint32_t off : {0u, 1u, 65535u}) {
+          for (const std::uint32_t range : {300u, 1000u, 2525u, 4000u}) {
+            scan.readings.push_back({(direction * 8192u + off) & 0xFFFFu, range});
+          }
+        }
+      }
+      out.scans.push_back(std::move(scan));
+    }
+  }
+  insert_golden(out);
   return out;
 }
 
