@@ -398,7 +398,7 @@ const GlobalLocBench& global_loc_bench(std::int64_t pose_cells) {
   GlobalLocConfig config;
   config.pose_res = kPoseRes;
   config.headings = kHeadings;
-  config.max_range = 8.0;
+  config.sensor.max_range = 8.0;
   GlobalLocBench b;
   b.map = std::make_unique<LocalizationMap>(world, 0.65, 0.196, config);
   // A free pose near the middle.
@@ -407,7 +407,7 @@ const GlobalLocBench& global_loc_bench(std::int64_t pose_cells) {
   const Pose2 truth = b.map->pose_of(i, j, 0);
   const Scan scan = simulate_scan(world, lidar_sensor(60, 2.0 * std::numbers::pi, 8.0),
                                   RangeNoiseConfig{0.03, 0.0, 0.0}, {truth.x, truth.y, 0.3}, 5);
-  b.readings = readings_of(scan, 0, config.max_range);
+  b.readings = readings_of(scan, 0, config.sensor.max_range);
   return cache.emplace(pose_cells, std::move(b)).first->second;
 }
 

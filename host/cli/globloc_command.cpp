@@ -22,15 +22,12 @@ CLI::Option* add_global_method_option(CLI::App& cmd, localization::GlobalMethod&
 }
 
 const FieldFlags& global_loc_flags() {
-  static const FieldFlags flags = {{"pose_res", "--pose-cell"},
-                                   {"headings", "--headings"},
-                                   {"sigma", "--sigma"},
-                                   {"max_range", "--max-range"},
-                                   {"seps_levels", "--levels"},
-                                   {"veto_levels", "--veto-levels"},
-                                   {"memory_limit", "--max-memory"},
-                                   {"refine_levels", "--refine-levels"},
-                                   {"max_scans", "--track"}};
+  static const FieldFlags flags = {
+      {"pose_res", "--pose-cell"},      {"headings", "--headings"},
+      {"sensor.sigma", "--sigma"},      {"sensor.max_range", "--max-range"},
+      {"seps_levels", "--levels"},      {"veto_levels", "--veto-levels"},
+      {"memory_limit", "--max-memory"}, {"refine_levels", "--refine-levels"},
+      {"max_scans", "--track"}};
   return flags;
 }
 
@@ -57,10 +54,10 @@ void add_global_loc_options(CLI::App& cmd, localization::GlobalLocConfig& c) {
   cmd.add_option("--headings", c.headings, "heading bins of the pose grid")
       ->transform(whole_range(4, 4096))
       ->capture_default_str();
-  cmd.add_option("--sigma", c.sigma, "range noise of the readings (m)")
+  cmd.add_option("--sigma", c.sensor.sigma, "range noise of the readings (m)")
       ->check(positive())
       ->capture_default_str();
-  cmd.add_option("--max-range", c.max_range, "readings at or past this are not used (m)")
+  cmd.add_option("--max-range", c.sensor.max_range, "readings at or past this are not used (m)")
       ->check(positive())
       ->capture_default_str();
   cmd.add_option("--levels", c.seps_levels, "each reading's strongest claim, in S_eps steps")

@@ -274,11 +274,11 @@ TrackResult track_from(const localization::LocalizationMap& map, const core::Log
         std::abs(core::wrap_angle(motion.theta)) < o.track_step_heading)
       continue;
     const std::vector<localization::RangeReading> readings =
-        localization::readings_of(log.scans[j], o.beams, o.config.max_range);
+        localization::readings_of(log.scans[j], o.beams, o.config.sensor.max_range);
     if (readings.empty()) continue;
-    tracker->add_scan(readings,
-                      localization::readings_of(log.scans[j], o.verify_beams, o.config.max_range),
-                      motion);
+    tracker->add_scan(
+        readings,
+        localization::readings_of(log.scans[j], o.verify_beams, o.config.sensor.max_range), motion);
     r.last = j;
     r.found = tracker->search(log.scans[j].sensor_mount);
   }
@@ -346,14 +346,14 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   GlobLocJobResult r;
   for (std::size_t i = first; i <= last; i += o.every) {
     std::vector<localization::RangeReading> readings =
-        localization::readings_of(log.scans[i], o.beams, o.config.max_range);
+        localization::readings_of(log.scans[i], o.beams, o.config.sensor.max_range);
     if (readings.empty())
       ++r.skipped_scans;
     else  // the verification readings are the pose grid's alone
       jobs.push_back(
           {i, std::move(readings),
            o.method == localization::GlobalMethod::pose_grid
-               ? localization::readings_of(log.scans[i], o.verify_beams, o.config.max_range)
+               ? localization::readings_of(log.scans[i], o.verify_beams, o.config.sensor.max_range)
                : std::vector<localization::RangeReading>{}});
   }
   if (jobs.empty())
@@ -361,7 +361,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         o.log, 0, "ranges",
         "no selected scan holds a valid reading (finite, > 0, below the scan's and "
         "the --max-range " +
-            io::format_number(o.config.max_range) + " m maximum range)");
+            io::format_number(o.config.sensor.max_range) + " m maximum range)");
 
   localization::PoseSearchOptions search = o.search;
   search.threads = core::threads_or_every_core(search.threads);
@@ -428,9 +428,10 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
           r.found += s.found ? 1 : 0;
           if (!s.found) {
             const double cell = map.grid.geometry.resolution;
-            s.endpoint_fit = {
-                endpoint_fit(*lmap, log.scans[s.index], s.estimate.robot, cell, o.config.max_range),
-                endpoint_fit(*lmap, log.scans[s.index], *s.reference, cell, o.config.max_range)};
+            s.endpoint_fit = {endpoint_fit(*lmap, log.scans[s.index], s.estimate.robot, cell,
+                                           o.config.sensor.max_range),
+                              endpoint_fit(*lmap, log.scans[s.index], *s.reference, cell,
+                                           o.config.sensor.max_range)};
           }
           if (!s.found && o.method == localization::GlobalMethod::pose_grid && o.track == 0 &&
               o.config.refine_levels > 0)
@@ -458,8 +459,8 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
        {{"pose_res", c.pose_res},
         {"headings", c.headings},
         {"beams", o.beams},
-        {"sigma", c.sigma},
-        {"max_range", c.max_range},
+        {"sigma", c.sensor.sigma},
+        {"max_range", c.sensor.max_range},
         {"seps_bits", c.seps_bits},
         {"seps_levels", c.seps_levels},
         {"veto_levels", c.veto_levels},

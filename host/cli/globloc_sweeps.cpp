@@ -299,7 +299,7 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
   // (the localizer knows its sensor) unless fixed. One LocalizationMap per sigma, shared
   // read-only by every thread.
   const auto sigma_at = [&](const SweepSpec& sweep, double value) {
-    return sweep.sweep == Sweep::noise && !o.fixed_sigma ? value : o.config.sigma;
+    return sweep.sweep == Sweep::noise && !o.fixed_sigma ? value : o.config.sensor.sigma;
   };
   std::vector<std::pair<double, std::unique_ptr<localization::LocalizationMap>>> maps;
   const auto map_start = Clock::now();
@@ -309,7 +309,7 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
       if (std::any_of(maps.begin(), maps.end(), [&](const auto& m) { return m.first == sigma; }))
         continue;
       localization::GlobalLocConfig config = o.config;
-      config.sigma = sigma;
+      config.sensor.sigma = sigma;
       try {
         maps.emplace_back(sigma, std::make_unique<localization::LocalizationMap>(
                                      map.grid, map.occupied_thresh, map.free_thresh, config));
@@ -451,7 +451,7 @@ void run_globloc_sweeps(const GlobLocSweepOptions& o) {
       "or obstacle; true poses uniform over free cells %g m from any non-free cell (%zu cells); "
       "the localizers' sigma %g m%s\n",
       c.readings, c.fov * kDeg, c.max_range, c.noise, o.clearance, world->start_cells(),
-      o.config.sigma, o.fixed_sigma ? "" : ", in the noise sweep the sensor's noise");
+      o.config.sensor.sigma, o.fixed_sigma ? "" : ", in the noise sweep the sensor's noise");
   std::printf(
       "success: position error <= %g m (2 pose cells) AND heading error <= %.3g deg (2 heading "
       "bins)\n",

@@ -20,11 +20,11 @@ const FieldFlags& slam_flags() {
                                    {"headings", "--headings"},
                                    {"schedule.lambda", "--lambda"},
                                    {"schedule.xi", "--xi"},
-                                   {"beam.sigma", "--sigma"},
+                                   {"sensor.sigma", "--sigma"},
                                    {"beam.likelihood_floor", "--floor"},
                                    {"beam.beams", "--beams"},
                                    {"beam.tempering", "--tempering"},
-                                   {"beam.max_range", "--max-range"},
+                                   {"sensor.max_range", "--max-range"},
                                    {"motion", "--motion-noise"},
                                    {"window.cells", "--window-cells"},
                                    {"window.headings", "--window-headings"},
@@ -115,10 +115,10 @@ void add_slam_options(CLI::App& cmd, slam::GridSlamConfig& c) {
   cmd.add_option("--window-headings", c.window.headings, "pose-grid heading bins (odd)")
       ->transform(whole_range(1, 255))
       ->capture_default_str();
-  cmd.add_option("--sigma", c.beam.sigma, "range noise of the beam model (m)")
+  cmd.add_option("--sigma", c.sensor.sigma, "range noise of the beam model (m)")
       ->check(positive())
       ->capture_default_str();
-  cmd.add_option("--max-range", c.beam.max_range, "readings at or past this are not used (m)")
+  cmd.add_option("--max-range", c.sensor.max_range, "readings at or past this are not used (m)")
       ->check(positive())
       ->capture_default_str();
   cmd.add_option("--floor", c.beam.likelihood_floor,
@@ -171,10 +171,12 @@ std::vector<SharedSetting> shared_settings() {
       {"--headings", "heading steps per turn (a power of two)", std::to_string(s.headings),
        [](SlamJobOptions& o) { o.submap_config.headings = o.grid_config.headings; }},
       {"--sigma", "range noise of the beam model (m)", option_number(s.sensor.sigma),
-       [](SlamJobOptions& o) { o.submap_config.sensor.sigma = o.grid_config.beam.sigma; }},
+       [](SlamJobOptions& o) { o.submap_config.sensor.sigma = o.grid_config.sensor.sigma; }},
       {"--max-range", "readings at or past this are not used (m)",
        option_number(s.sensor.max_range),
-       [](SlamJobOptions& o) { o.submap_config.sensor.max_range = o.grid_config.beam.max_range; }},
+       [](SlamJobOptions& o) {
+         o.submap_config.sensor.max_range = o.grid_config.sensor.max_range;
+       }},
       {"--empty-divisor", "a reading's empty evidence is divided by this before it is fused",
        std::to_string(s.map.empty_divisor), [](SlamJobOptions& o) {
          o.submap_config.map.empty_divisor = o.grid_config.map.empty_divisor;

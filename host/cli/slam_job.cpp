@@ -377,8 +377,8 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
                         {"headings", c.headings},
                         {"window_cells", c.window.cells},
                         {"window_headings", c.window.headings},
-                        {"sigma", c.beam.sigma},
-                        {"max_range", c.beam.max_range},
+                        {"sigma", c.sensor.sigma},
+                        {"max_range", c.sensor.max_range},
                         {"eps", r.run.codec.eps()}}}});
   }
   if (r.ate) {

@@ -22,6 +22,7 @@
 #include "intgrid/core/grid.hpp"
 #include "intgrid/core/mapping.hpp"
 #include "intgrid/core/narrow_ism.hpp"
+#include "intgrid/core/range_sensor.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/core/scan_insertion.hpp"
 #include "intgrid/core/sectoral_ism.hpp"

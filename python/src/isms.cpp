@@ -4,6 +4,19 @@
 namespace intgrid::python {
 
 void bind_isms(py::module_& m) {
+  py::class_<core::RangeSensor> range_sensor(
+      m, "RangeSensor",
+      "A range sensor as the engines and the localization model it: sigma, the range noise of a "
+      "reading (m), and max_range, past which readings are not used (m). The `sensor` of "
+      "SubmapSlamConfig, GridSlamConfig and GlobalLocConfig.");
+  def_fields_init<core::RangeSensor>(range_sensor);
+  range_sensor.def_readwrite("sigma", &core::RangeSensor::sigma, "range noise (m)")
+      .def_readwrite("max_range", &core::RangeSensor::max_range,
+                     "readings at or past it unused (m)")
+      .def(
+          "check", [](const core::RangeSensor& s) { core::check_range_sensor(s, "sensor"); },
+          "Raises ValueError naming a bad field.");
+
   py::class_<core::GaussianBeamModel>(m, "GaussianBeamModel",
                                       "Narrow-FOV Gaussian model: sigma(d) = sigma0 (1 + k_d d).")
       .def(py::init<double, double>(), "sigma0"_a = 0.03, "k_d"_a = 0.0)

@@ -57,8 +57,7 @@ void bind_localization(py::module_& m) {
   def_fields_init<GlobalLocConfig>(loc_config);
   loc_config.def_readwrite("pose_res", &GlobalLocConfig::pose_res, "pose-grid step (m)")
       .def_readwrite("headings", &GlobalLocConfig::headings)
-      .def_readwrite("sigma", &GlobalLocConfig::sigma, "range noise (m)")
-      .def_readwrite("max_range", &GlobalLocConfig::max_range, "readings at or past it unused (m)")
+      .def_readwrite("sensor", &GlobalLocConfig::sensor, "a RangeSensor")
       .def_readwrite("seps_bits", &GlobalLocConfig::seps_bits)
       .def_readwrite("seps_levels", &GlobalLocConfig::seps_levels)
       .def_readwrite("veto_levels", &GlobalLocConfig::veto_levels)

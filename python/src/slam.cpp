@@ -50,12 +50,6 @@ void bind_submap_slam(py::module_& m) {
       "place: config.loops.min_score = 0.7.");
   def_fields_init<SubmapSlamConfig>(config);
 
-  py::class_<SubmapSlamConfig::Sensor> sensor(config, "Sensor", "The ISM's beam model.");
-  def_fields_init<SubmapSlamConfig::Sensor>(sensor);
-  sensor.def_readwrite("sigma", &SubmapSlamConfig::Sensor::sigma, "range noise (m)")
-      .def_readwrite("max_range", &SubmapSlamConfig::Sensor::max_range,
-                     "readings at or past it unused (m)");
-
   py::class_<SubmapSlamConfig::Map> map(config, "Map", "The submaps' S_eps grids.");
   def_fields_init<SubmapSlamConfig::Map>(map);
   map.def_readwrite("seps_bits", &SubmapSlamConfig::Map::seps_bits)
@@ -122,7 +116,7 @@ void bind_submap_slam(py::module_& m) {
                      "heading steps per turn of the match lattice")
       .def_readwrite("threads", &SubmapSlamConfig::threads,
                      "threads of the back end's searches (0: every core); the same result")
-      .def_readwrite("sensor", &SubmapSlamConfig::sensor)
+      .def_readwrite("sensor", &SubmapSlamConfig::sensor, "a RangeSensor")
       .def_readwrite("map", &SubmapSlamConfig::map)
       .def_readwrite("submaps", &SubmapSlamConfig::submaps)
       .def_readwrite("filter", &SubmapSlamConfig::filter)
@@ -200,7 +194,7 @@ void bind_slam(py::module_& m) {
       m, "GridSlamConfig",
       "Options of a SLAM run, nested by concern (the `slam` defaults). "
       "GridSlamConfig(cell=0.1, ...) sets top-level fields; nested ones are "
-      "set in place: config.beam.sigma = 0.03.");
+      "set in place: config.sensor.sigma = 0.03.");
   def_fields_init<GridSlamConfig>(config);
 
   py::class_<GridSlamConfig::Schedule> schedule(config, "Schedule",
@@ -213,11 +207,9 @@ void bind_slam(py::module_& m) {
   py::class_<GridSlamConfig::BeamModel> beam(config, "BeamModel",
                                              "The localization event's beam model.");
   def_fields_init<GridSlamConfig::BeamModel>(beam);
-  beam.def_readwrite("sigma", &GridSlamConfig::BeamModel::sigma, "range noise (m)")
-      .def_readwrite("likelihood_floor", &GridSlamConfig::BeamModel::likelihood_floor)
+  beam.def_readwrite("likelihood_floor", &GridSlamConfig::BeamModel::likelihood_floor)
       .def_readwrite("beams", &GridSlamConfig::BeamModel::beams)
-      .def_readwrite("tempering", &GridSlamConfig::BeamModel::tempering)
-      .def_readwrite("max_range", &GridSlamConfig::BeamModel::max_range, "m");
+      .def_readwrite("tempering", &GridSlamConfig::BeamModel::tempering);
 
   py::class_<GridSlamConfig::MotionModel> motion(config, "MotionModel",
                                                  "sigma_xy = xy0 + xy_per_m |t| + xy_per_rad |r|, "
@@ -254,6 +246,7 @@ void bind_slam(py::module_& m) {
   config.def_readwrite("cell", &GridSlamConfig::cell, "map cell and pose-grid step (m)")
       .def_readwrite("headings", &GridSlamConfig::headings, "heading bins per turn (power of two)")
       .def_readwrite("schedule", &GridSlamConfig::schedule)
+      .def_readwrite("sensor", &GridSlamConfig::sensor, "a RangeSensor")
       .def_readwrite("beam", &GridSlamConfig::beam)
       .def_readwrite("motion", &GridSlamConfig::motion)
       .def_readwrite("window", &GridSlamConfig::window)

@@ -67,7 +67,8 @@ def scan_all_round(cells, geometry, truth, beams=90):
 def test_every_method_finds_the_pose_in_a_synthetic_room(method):
     cells, geometry = room()
     # On the lattice alone (no refinement): the estimate is then a cell of the scores returned.
-    config = intgrid.GlobalLocConfig(pose_res=0.1, headings=32, max_range=10.0, refine_levels=0)
+    config = intgrid.GlobalLocConfig(pose_res=0.1, headings=32, refine_levels=0,
+                                     sensor=intgrid.RangeSensor(max_range=10.0))
     lmap = intgrid.LocalizationMap(cells, geometry, 0.65, 0.196, config)
     truth = intgrid.Pose2(1.5, 1.2, 0.7)
     beams = 90
@@ -90,8 +91,8 @@ def test_refinement_places_the_pose_grid_estimate_between_the_lattice_cells():
     scan = scan_all_round(cells, geometry, truth)
     errors = []
     for levels in (0, 4):
-        config = intgrid.GlobalLocConfig(pose_res=0.2, headings=32, max_range=10.0,
-                                         refine_levels=levels)
+        config = intgrid.GlobalLocConfig(pose_res=0.2, headings=32, refine_levels=levels,
+                                         sensor=intgrid.RangeSensor(max_range=10.0))
         lmap = intgrid.LocalizationMap(cells, geometry, 0.65, 0.196, config)
         estimate = intgrid.localize(lmap, scan, method="pog", beams=0)
         errors.append(math.hypot(estimate.robot.x - truth.x, estimate.robot.y - truth.y))

@@ -78,16 +78,16 @@ def test_the_run_moved_and_beats_odometry_against_the_reference(both_runs, prefi
 def test_nested_config_reads_and_writes_and_checks():
     config = intgrid.GridSlamConfig(cell=0.05)
     assert config.cell == 0.05 and config.headings == 1024
-    config.beam.sigma = 0.03
+    config.sensor.sigma = 0.03
     config.schedule.lambda_ = 2
     config.window.cells = 13
     config.map.margin = 5.0
     config.ugamma.bits = 20
     config.motion.theta0 = 0.004
-    assert (config.beam.sigma, config.schedule.lambda_, config.window.cells, config.map.margin,
+    assert (config.sensor.sigma, config.schedule.lambda_, config.window.cells, config.map.margin,
             config.ugamma.bits, config.motion.theta0) == (0.03, 2, 13, 5.0, 20, 0.004)
     config.beam = intgrid.GridSlamConfig.BeamModel(tempering=4)
-    assert config.beam.tempering == 4 and config.beam.sigma == 0.05
+    assert config.beam.tempering == 4 and config.sensor.sigma == 0.03  # the other groups stay
     assert "window=" in repr(config)
     config.check()
     config.window.cells = 12

@@ -53,7 +53,7 @@ def test_nested_config_reads_and_writes_and_checks(loop_log):
     assert config.submaps.rematch is True
     config.submaps.rematch = False
     assert config.submaps.rematch is False
-    config.sensor = intgrid.SubmapSlamConfig.Sensor(max_range=20.0)
+    config.sensor = intgrid.RangeSensor(max_range=20.0)
     assert config.sensor.max_range == 20.0 and config.sensor.sigma == 0.03
     assert "loops=" in repr(config)
     config.check()

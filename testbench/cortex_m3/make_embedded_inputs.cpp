@@ -39,7 +39,7 @@ void write_array(std::ostringstream& out, const Values& values) {
 std::string header(const Log& log, const RosMap& map) {
   if (log.scans.size() < 2) throw std::runtime_error("the log needs at least two scans");
   GridSlamConfig config;
-  config.beam.max_range = 8.0;
+  config.sensor.max_range = 8.0;
   SlamRun run;
   const std::vector<QuantizedScan> scans = quantize_scans(log, config, run);
   const Scan& first = log.scans.front();

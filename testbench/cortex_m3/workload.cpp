@@ -78,8 +78,8 @@ GridSlamConfig small_slam_config(int lambda) {
   c.window.cells = 5;
   c.window.headings = 5;
   c.beam.beams = 30;
-  c.beam.max_range = kMaxRangeMm / 1000.0;
-  c.beam.sigma = kSigma;
+  c.sensor.max_range = kMaxRangeMm / 1000.0;
+  c.sensor.sigma = kSigma;
   c.map.margin = 1.0;
   return c;
 }
@@ -96,8 +96,8 @@ GlobalLocConfig pose_grid_config() {
   GlobalLocConfig c;
   c.pose_res = 0.2;
   c.headings = 32;
-  c.sigma = kSigma;
-  c.max_range = kMaxRangeMm / 1000.0;
+  c.sensor.sigma = kSigma;
+  c.sensor.max_range = kMaxRangeMm / 1000.0;
   c.refine_levels = 0;  // the workload times one reading's pass over the lattice, not a search
   return c;
 }

@@ -51,7 +51,7 @@ GlobalLocConfig small_config(double pose_res, int headings) {
   GlobalLocConfig c;
   c.pose_res = pose_res;
   c.headings = headings;
-  c.max_range = 10.0;
+  c.sensor.max_range = 10.0;
   return c;
 }
 
@@ -193,7 +193,7 @@ TEST(GlobalLocalization, ClaimsAreTheClampedQuantizedNarrowIsm) {
   SimRandom random(13);
   const ProbabilityGrid map = random_map(60, 50, 0.05, 0.05, 0.0, random);
   GlobalLocConfig config = small_config(0.1, 32);
-  config.sigma = 0.02;
+  config.sensor.sigma = 0.02;
   const LocalizationMap lmap(map, 0.65, 0.196, config);
   int clamps = 0, vetoes = 0;
   for (const RangeReading reading :
@@ -342,7 +342,7 @@ TEST(GlobalLocalization, DenseAndWalkFormsGiveIdenticalGridsOnRandomMaps) {
     const double pose_res = res * (1.0 + static_cast<double>(random.below(3)) * 0.5);
     const int headings = 4 + static_cast<int>(random.below(61));
     GlobalLocConfig config = small_config(pose_res, headings);
-    config.sigma = random.uniform(0.005, 0.1);
+    config.sensor.sigma = random.uniform(0.005, 0.1);
     config.seps_levels = 1 + static_cast<int>(random.below(40));
     std::unique_ptr<LocalizationMap> lmap;
     try {
@@ -375,7 +375,7 @@ GlobalLocConfig floor_config() {
   GlobalLocConfig config;
   config.pose_res = 0.25;
   config.headings = 48;
-  config.max_range = 8.0;
+  config.sensor.max_range = 8.0;
   return config;
 }
 
@@ -400,7 +400,7 @@ Trial simulate_trial(const ProbabilityGrid& world, const LocalizationMap& lmap, 
   sensor.mount = mount;
   const Scan scan = simulate_scan(world, sensor, RangeNoiseConfig{0.03, 0.0, contamination},
                                   t.robot, seed + 1000);
-  t.readings = readings_of(scan, 0, lmap.config().max_range);
+  t.readings = readings_of(scan, 0, lmap.config().sensor.max_range);
   return t;
 }
 
@@ -609,7 +609,7 @@ ProbabilityGrid half_turn_room(bool broken) {
 TEST(GlobalLocalization, AmbiguousWhenThePlaceHasATwinAndNotWhenTheTwinDiffers) {
   const Pose2 truth{1.5, 2.8, 0.3}, twin{4.5, 1.2, wrap_angle(0.3 + kPi)};
   GlobalLocConfig config = small_config(0.1, 64);
-  config.max_range = 8.0;
+  config.sensor.max_range = 8.0;
   PoseSearchOptions options;
   options.hypotheses = 2;
   for (const bool broken : {false, true}) {
@@ -618,7 +618,7 @@ TEST(GlobalLocalization, AmbiguousWhenThePlaceHasATwinAndNotWhenTheTwinDiffers) 
     const LocalizationMap lmap(room, 0.65, 0.196, config);
     const Scan scan = simulate_scan(room, lidar_sensor(90, 2.0 * kPi, 8.0),
                                     RangeNoiseConfig{0.01, 0.0, 0.0}, truth, 7);
-    const std::vector<RangeReading> readings = readings_of(scan, 0, config.max_range);
+    const std::vector<RangeReading> readings = readings_of(scan, 0, config.sensor.max_range);
     const PoseSearchResult r = search_pose_grid(lmap, readings, readings, Pose2{}, options);
     ASSERT_EQ(r.hypotheses.size(), 2u);
     const auto near = [](const Pose2& a, const Pose2& b) {
@@ -684,8 +684,8 @@ TEST_P(SearchThreads, SameResultForAnyThreadCount) {
     for (const RangeReading& r : t.readings)
       claims.push_back(
           lmap.fine().claims(r.range, r.bearing,
-                             std::sqrt(config.sigma * config.sigma + step * step + cell * cell +
-                                       (bin * r.range) * (bin * r.range)),
+                             std::sqrt(config.sensor.sigma * config.sensor.sigma + step * step +
+                                       cell * cell + (bin * r.range) * (bin * r.range)),
                              config.seps_levels, config.veto_levels));
     for (const PoseHypothesis& h : one.hypotheses)
       EXPECT_EQ(h.score,
@@ -807,8 +807,8 @@ TEST(GlobalLocalization, ErrorsNameTheField) {
   };
   field([](GlobalLocConfig& b) { b.pose_res = std::nan(""); }, "pose_res");
   field([](GlobalLocConfig& b) { b.headings = 2; }, "headings");
-  field([](GlobalLocConfig& b) { b.sigma = 0.0; }, "sigma");
-  field([](GlobalLocConfig& b) { b.max_range = -1.0; }, "max_range");
+  field([](GlobalLocConfig& b) { b.sensor.sigma = 0.0; }, "sigma");
+  field([](GlobalLocConfig& b) { b.sensor.max_range = -1.0; }, "max_range");
   field([](GlobalLocConfig& b) { b.seps_bits = 1; }, "seps_bits");
   field([](GlobalLocConfig& b) { b.seps_levels = 128; }, "seps_levels");
   field([](GlobalLocConfig& b) { b.seps_levels = 0; }, "seps_levels");

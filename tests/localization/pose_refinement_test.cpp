@@ -183,7 +183,7 @@ GlobalLocConfig floor_config() {
   GlobalLocConfig config;
   config.pose_res = 0.2;
   config.headings = 64;
-  config.max_range = 10.0;
+  config.sensor.max_range = 10.0;
   return config;
 }
 
@@ -331,7 +331,7 @@ ProbabilityGrid corridor() {
 TEST(PoseTracker, ACorridorOneScanCannotPlaceIsPlacedAfterAShortDrive) {
   const ProbabilityGrid world = corridor();
   GlobalLocConfig config;
-  config.max_range = 4.0;
+  config.sensor.max_range = 4.0;
   const LocalizationMap lmap(world, 0.65, 0.196, config);
   PoseSearchOptions options;
   options.hypotheses = 2;

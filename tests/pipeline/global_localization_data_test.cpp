@@ -31,8 +31,8 @@ GlobalLocConfig room_config() {
   GlobalLocConfig c;
   c.pose_res = 0.2;
   c.headings = 64;
-  c.sigma = 0.03;
-  c.max_range = 8.0;
+  c.sensor.sigma = 0.03;
+  c.sensor.max_range = 8.0;
   return c;
 }
 
@@ -51,7 +51,7 @@ TEST(GlobalLocalizationData, RoomMapLocalizesSimulatedScans) {
     const Pose2 truth = random_candidate_pose(lmap, random);
     const Scan scan = simulate_scan(map.grid, sensor, RangeNoiseConfig{0.03, 0.0, 0.0}, truth,
                                     900 + std::uint64_t(n));
-    const std::vector<RangeReading> readings = readings_of(scan, 0, lmap.config().max_range);
+    const std::vector<RangeReading> readings = readings_of(scan, 0, lmap.config().sensor.max_range);
     for (int m = 0; m < methods; ++m) {
       const GlobalEstimate e = localize_global(lmap, readings, Pose2{}, GlobalMethod(m));
       const double position = std::hypot(e.robot.x - truth.x, e.robot.y - truth.y);

@@ -60,7 +60,7 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
   const Pose2 robot{0.3, -0.4, 0.5};
   GridSlamConfig config = small_config();
   config.schedule.lambda = 1000;
-  config.beam.max_range = 3.2;  // some walls are farther: those readings are dropped
+  config.sensor.max_range = 3.2;  // some walls are farther: those readings are dropped
   Log log;
   log.scans.push_back(make_scan(world, robot, robot, 0.0, 90));
   const Scan& scan = log.scans[0];
@@ -80,7 +80,7 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
     const double z = scan.ranges[i];
     if (!usable(i)) {
-      ASSERT_GE(z, config.beam.max_range - 0.001) << i;
+      ASSERT_GE(z, config.sensor.max_range - 0.001) << i;
       ++dropped;
       continue;
     }
@@ -105,7 +105,7 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
       ASSERT_TRUE(world.inside_room(w.x, w.y, 2 * c)) << cx << "," << cy;
       const double r = std::hypot(cx * c - sensor.x, cy * c - sensor.y);
       farthest = std::max(farthest, r);
-      ASSERT_LE(r, config.beam.max_range + 2 * c) << cx << "," << cy;
+      ASSERT_LE(r, config.sensor.max_range + 2 * c) << cx << "," << cy;
       if (n > 0) {
         ++positive;
         int nearest = 1 << 30;
@@ -150,7 +150,7 @@ TEST(SlamMapping, FirstScanMarksTheHitsAndClearsTheLineOfSight) {
   std::printf(
       "[slam] first scan: %d occupied, %d empty cells; worst occupied-to-hit distance %d "
       "cell(s); farthest touched cell %.3f m (max range %.1f m); %zu line-of-sight samples\n",
-      positive, negative, worst_hit_distance, farthest, config.beam.max_range, sampled);
+      positive, negative, worst_hit_distance, farthest, config.sensor.max_range, sampled);
 }
 
 // The mapping event with a spread Pi: P(o_c) = sum_x w_x P_x(o_c) + (1 - W_c) / 2 over the poses
@@ -291,7 +291,7 @@ TEST(SlamMapping, MixtureOfPosesIsTheWeightedSumOfTheirIsmsInInteger) {
 TEST(SlamMapping, ScanWithoutUsableReadingsTouchesNothing) {
   const World world;
   GridSlamConfig config = small_config();
-  config.beam.max_range = 1.0;  // every wall is farther
+  config.sensor.max_range = 1.0;  // every wall is farther
   Log log;
   log.scans.push_back(make_scan(world, {}, {}, 0.0, 36));
   const SlamSetup setup = make_slam_setup(config, log.scans[0], 0.0);

@@ -162,7 +162,7 @@ TEST(SlamMotion, IntegerAndDoubleMeansAgree) {
 
 TEST(SlamMotion, WindowReachingTheMapEdgeThrows) {
   GridSlamConfig config = small_config();
-  config.beam.max_range = 1.0;
+  config.sensor.max_range = 1.0;
   config.map.margin = 1.0;
   const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), 0.0);
   GridSlamEngine<DoubleProbabilities> slam(setup, make_probabilities<DoubleProbabilities>(setup));
@@ -184,7 +184,7 @@ TEST(SlamMotion, WindowReachingTheMapEdgeThrows) {
 TEST(SlamMotion, RunWithinTheAnnouncedReachFitsTheMapWithoutMargin) {
   for (const double max_range : {1.0, 10.0}) {
     GridSlamConfig config = small_config();
-    config.beam.max_range = max_range;
+    config.sensor.max_range = max_range;
     config.map.margin = 0.0;
     const double reach = 2.0;
     const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), reach);
@@ -218,7 +218,7 @@ TEST(SlamMotion, IntegerEstimateOfABroadPoseGridOnALargeWindow) {
     config.window.headings = w.headings;
     config.motion.xy0 = 5.0;  // one update spreads Pi nearly evenly over the window
     config.motion.theta0 = 2.0;
-    config.beam.max_range = 1.0;
+    config.sensor.max_range = 1.0;
     config.map.margin = 10.0;
     const SlamSetup setup = make_slam_setup(config, make_scan(World{}, {}, {}, 0.0, 36), 0.0);
     GridSlamEngine<DoubleProbabilities> d(setup, make_probabilities<DoubleProbabilities>(setup));

@@ -90,7 +90,7 @@ TEST(SlamSetup, MapPutsTheSlamOriginCellOnTheOrigin) {
     EXPECT_EQ(g.cell_x(0.0), s.origin_cell_x);
     EXPECT_EQ(g.cell_y(0.0), s.origin_cell_y);
     // Every point within the odometry's reach plus a full-range reading, plus the margin, is in.
-    const double needed = reach + c.beam.max_range + c.map.margin;
+    const double needed = reach + c.sensor.max_range + c.map.margin;
     for (const double sx : {-1.0, 1.0})
       for (const double sy : {-1.0, 1.0})
         EXPECT_TRUE(g.contains(g.cell_x(sx * needed), g.cell_y(sy * needed))) << cell;
@@ -101,7 +101,7 @@ TEST(SlamSetup, NarrowIsmTableIsTheScanInsertersBeams) {
   const World world;
   for (const int divisor : {1, 3}) {
     GridSlamConfig c = small_config();
-    c.beam.max_range = 6.0;
+    c.sensor.max_range = 6.0;
     c.map.empty_divisor = divisor;
     const SlamSetup s = make_slam_setup(c, make_scan(world, {}, {}, 0.0, 90), 0.0);
     const NarrowIsmTable& t = s.ism;
@@ -111,7 +111,7 @@ TEST(SlamSetup, NarrowIsmTableIsTheScanInsertersBeams) {
     EXPECT_EQ(t.begin[0], t.begin[1]);  // a reading of 0 has no cells
     EXPECT_EQ(t.begin.back(), t.values.size());
     // The oracle: the integer scan inserter with the same model, codec and veto.
-    IndexScanInserter<std::int8_t> inserter(GaussianBeamModel{c.beam.sigma, 0.0}, c.cell, s.codec,
+    IndexScanInserter<std::int8_t> inserter(GaussianBeamModel{c.sensor.sigma, 0.0}, c.cell, s.codec,
                                             VetoBound::strongest_claim, t.z_step_mm / 1000.0);
     std::size_t checked = 0;
     for (std::size_t b = 1; b < bins; b += 7) {
@@ -155,13 +155,13 @@ TEST(SlamSetup, ConfigCheckNamesEachBadField) {
        }},
       {"schedule.lambda", [](GridSlamConfig& c) { c.schedule.lambda = 0; }},
       {"schedule.xi", [](GridSlamConfig& c) { c.schedule.xi = 0; }},
-      {"beam.sigma",
-       [](GridSlamConfig& c) { c.beam.sigma = std::numeric_limits<double>::quiet_NaN(); }},
-      {"beam.sigma", [](GridSlamConfig& c) { c.beam.sigma = 0.0005; }},
+      {"sensor.sigma",
+       [](GridSlamConfig& c) { c.sensor.sigma = std::numeric_limits<double>::quiet_NaN(); }},
+      {"sensor.sigma", [](GridSlamConfig& c) { c.sensor.sigma = 0.0005; }},
       {"beam.likelihood_floor", [](GridSlamConfig& c) { c.beam.likelihood_floor = 0.0; }},
       {"beam.beams", [](GridSlamConfig& c) { c.beam.beams = 0; }},
       {"beam.tempering", [](GridSlamConfig& c) { c.beam.tempering = 0; }},
-      {"beam.max_range", [](GridSlamConfig& c) { c.beam.max_range = -1.0; }},
+      {"sensor.max_range", [](GridSlamConfig& c) { c.sensor.max_range = -1.0; }},
       {"window.pose_cutoff", [](GridSlamConfig& c) { c.window.pose_cutoff = 0.0; }},
       {"window.pose_prune", [](GridSlamConfig& c) { c.window.pose_prune = -1e-9; }},
       {"window.pose_prune",

@@ -164,7 +164,7 @@ inline double wrap(double a) {
 
 inline GridSlamConfig small_config() {
   GridSlamConfig c;
-  c.beam.max_range = 10.0;
+  c.sensor.max_range = 10.0;
   c.map.margin = 2.0;
   return c;
 }

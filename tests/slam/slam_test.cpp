@@ -86,7 +86,7 @@ TEST(SlamLog, CheckRejectsWhatSlamCannotUse) {
 TEST(SlamLog, QuantizationCountsAndZeroesUnusableReadings) {
   Log log = small_log(3, 10);
   GridSlamConfig config = small_config();
-  config.beam.max_range = 5.0;
+  config.sensor.max_range = 5.0;
   std::vector<double>& r = log.scans[1].ranges;
   r = {0.0,    std::numeric_limits<double>::quiet_NaN(),
        -1.0,   std::numeric_limits<double>::infinity(),

@@ -77,9 +77,7 @@ void check_global_loc_config(const GlobalLocConfig& c) {
   positive(c.pose_res, "pose_res");
   require_field(c.headings >= 4 && c.headings <= 4096, "headings",
                 "must be 4..4096, got " + std::to_string(c.headings));
-  positive(c.sigma, "sigma");
-  require_field(c.sigma <= 1.0, "sigma", "must be at most 1 metre");
-  positive(c.max_range, "max_range");
+  core::check_range_sensor(c.sensor, "sensor");
   require_field(c.seps_bits >= 2 && c.seps_bits <= 16, "seps_bits",
                 "must be 2..16, got " + std::to_string(c.seps_bits));
   require_field(c.seps_levels >= 1 && c.seps_levels <= core::max_index_for_bits(c.seps_bits),
@@ -371,12 +369,12 @@ double LocalizationMap::distance_to_occupied(double x, double y) const {
 }
 
 double LocalizationMap::effective_sigma(double z) const {
-  return std::hypot(config_.sigma, config_.pose_res, heading_bin() * z);
+  return std::hypot(config_.sensor.sigma, config_.pose_res, heading_bin() * z);
 }
 
 template <class Score>
 BasicReadingClaims<Score> LocalizationMap::make_claims(const RangeReading& reading) const {
-  check_reading(reading, config_.max_range);
+  check_reading(reading, config_.sensor.max_range);
   BasicReadingClaims<Score> out;
   out.sigma_eff = effective_sigma(reading.range);
   out.shift = bearing_shift(reading.bearing, heading_bin(), config_.headings);
@@ -536,7 +534,7 @@ MarkovLocalization::MarkovLocalization(const LocalizationMap& map, GlobalMethod 
 }
 
 bool MarkovLocalization::update(const RangeReading& reading) {
-  check_reading(reading, map_->config().max_range);
+  check_reading(reading, map_->config().sensor.max_range);
   const LocalizationMap& map = *map_;
   const GlobalLocConfig& c = map.config();
   const double z = reading.range;
@@ -545,8 +543,8 @@ bool MarkovLocalization::update(const RangeReading& reading) {
   const double inv2var = 0.5 / (sigma * sigma);
   const double bin = map.heading_bin();
   const int shift = bearing_shift(reading.bearing, bin, c.headings);
-  const double rand_term = z < c.max_range ? c.z_rand / c.max_range : 0.0;
-  const double max_term = z >= c.max_range ? c.z_max : 0.0;
+  const double rand_term = z < c.sensor.max_range ? c.z_rand / c.sensor.max_range : 0.0;
+  const double max_term = z >= c.sensor.max_range ? c.z_max : 0.0;
   const double short_density = c.lambda_short * std::exp(-c.lambda_short * z);
   const core::Pose2 corner = map.pose_of(0, 0, 0);  // centre of pose cell (0, 0)
   const std::span<const std::uint32_t> candidates = map.candidates();
@@ -569,8 +567,9 @@ bool MarkovLocalization::update(const RangeReading& reading) {
         p = c.z_hit * norm * std::exp(-dist * dist * inv2var) + rand_term;
       } else {
         const std::uint16_t h = hits[candidate];
-        const double expected =
-            h == LocalizationMap::kNoHit ? c.max_range : std::min(h * step, c.max_range);
+        const double expected = h == LocalizationMap::kNoHit
+                                    ? c.sensor.max_range
+                                    : std::min(h * step, c.sensor.max_range);
         const double e = z - expected;
         const double hit = norm * std::exp(-e * e * inv2var);
         if (method_ == GlobalMethod::markov) {
@@ -632,7 +631,8 @@ GlobalEstimate localize_global(const LocalizationMap& map, std::span<const Range
   if (method == GlobalMethod::pose_grid)
     return search_pose_grid(map, readings, readings, sensor_mount, PoseSearchOptions{}, scores)
         .estimate;
-  const std::vector<RangeReading> used = detail::usable_readings(readings, map.config().max_range);
+  const std::vector<RangeReading> used =
+      detail::usable_readings(readings, map.config().sensor.max_range);
   MarkovLocalization markov(map, method);
   for (const RangeReading& r : used) markov.update(r);
   const std::span<const double> belief = markov.belief();
@@ -648,7 +648,8 @@ GlobalEstimate localize_global(const LocalizationMap& map, std::span<const Range
 
 GlobalEstimate localize_scan(const LocalizationMap& map, const core::Scan& scan, int beams,
                              GlobalMethod method, PoseScores* scores) {
-  const std::vector<RangeReading> readings = readings_of(scan, beams, map.config().max_range);
+  const std::vector<RangeReading> readings =
+      readings_of(scan, beams, map.config().sensor.max_range);
   return localize_global(map, readings, scan.sensor_mount, method, scores);
 }
 

@@ -76,7 +76,8 @@ double level_sigma(const LocalizationMap& map, int level, double z) {
   const double step = c.pose_res / double(1 << level);
   const double bin = map.heading_bin() / double(1 << level);
   const double cell = map.fine().geometry().resolution;
-  return std::sqrt(c.sigma * c.sigma + step * step + cell * cell + (bin * z) * (bin * z));
+  return std::sqrt(c.sensor.sigma * c.sensor.sigma + step * step + cell * cell +
+                   (bin * z) * (bin * z));
 }
 
 std::vector<FineClaims> fine_claims_of(const LocalizationMap& map,
@@ -99,8 +100,8 @@ std::unique_ptr<ScanEvidence> make_evidence(const LocalizationMap& map,
                                             bool tracking, int threads) {
   const GlobalLocConfig& config = map.config();
   auto e = std::make_unique<ScanEvidence>();
-  e->screen = detail::usable_readings(screening, config.max_range);
-  e->verify = detail::usable_readings(verification, config.max_range);
+  e->screen = detail::usable_readings(screening, config.sensor.max_range);
+  e->verify = detail::usable_readings(verification, config.sensor.max_range);
   e->same = std::equal(e->screen.begin(), e->screen.end(), e->verify.begin(), e->verify.end(),
                        [](const RangeReading& a, const RangeReading& b) {
                          return a.range == b.range && a.bearing == b.bearing;

@@ -43,8 +43,7 @@ void check_grid_slam_config(const GridSlamConfig& c) {
                 "window.headings", "must be odd, 1..255 and at most headings");
   require_field(c.schedule.lambda >= 1, "schedule.lambda", "must be >= 1");
   require_field(c.schedule.xi >= 1, "schedule.xi", "must be >= 1");
-  require_field(positive(c.beam.sigma) && c.beam.sigma >= 0.001 && c.beam.sigma <= 1.0,
-                "beam.sigma", "must be in [0.001, 1] metres");
+  core::check_range_sensor(c.sensor, "sensor");
   require_field(positive(c.beam.likelihood_floor) && c.beam.likelihood_floor < 1.0,
                 "beam.likelihood_floor", "must be in (0, 1)");
   require_field(c.beam.beams >= 1, "beam.beams", "must be >= 1");
@@ -52,8 +51,6 @@ void check_grid_slam_config(const GridSlamConfig& c) {
                 "must be 1..127");
   require_field(c.beam.tempering >= 1 && c.beam.tempering <= 1000, "beam.tempering",
                 "must be 1..1000");
-  require_field(positive(c.beam.max_range) && c.beam.max_range <= 1000.0, "beam.max_range",
-                "must be in (0, 1000] metres");
   require_field(std::isfinite(c.window.pose_cutoff) && c.window.pose_cutoff > 0.0 &&
                     c.window.pose_cutoff <= 1.0,
                 "window.pose_cutoff", "must be in (0, 1]");
@@ -82,8 +79,8 @@ SlamSetup make_slam_setup(const GridSlamConfig& config, const core::Scan& geomet
   SlamSetup s;
   s.config = config;
   s.cell_mm = millimetres(config.cell);
-  s.sigma_mm = std::max<std::int32_t>(1, millimetres(config.beam.sigma));
-  s.max_range_mm = millimetres(config.beam.max_range);
+  s.sigma_mm = std::max<std::int32_t>(1, millimetres(config.sensor.sigma));
+  s.max_range_mm = millimetres(config.sensor.max_range);
 
   for (std::size_t i = 0; i < geometry.ranges.size(); ++i)
     s.sensor.bearing.push_back(angle_units(geometry.bearing(i)));
@@ -97,8 +94,8 @@ SlamSetup make_slam_setup(const GridSlamConfig& config, const core::Scan& geomet
   // A square map centred on the first pose, cell (half, half) centred on it, that holds every
   // ray of every window pose (GridSlamEngine::check_window_inside_map) while the odometry stays
   // within reach_m.
-  const double half_m =
-      reach_m + config.beam.max_range + 3.0 * config.beam.sigma + 2.0 * mount + config.map.margin;
+  const double half_m = reach_m + config.sensor.max_range + 3.0 * config.sensor.sigma +
+                        2.0 * mount + config.map.margin;
   if (!(half_m / config.cell < 32767.0))
     core::fail<std::invalid_argument>("SLAM: the map would exceed 65535 cells a side");
   const auto half =
@@ -116,10 +113,10 @@ SlamSetup make_slam_setup(const GridSlamConfig& config, const core::Scan& geomet
 
   // The narrow ISM of every reading on a grid of z_step, as the map job's integer path makes it.
   s.codec = core::SepsCodec::for_levels(config.map.seps_bits,
-                                        core::narrow_pmax(config.cell, config.beam.sigma),
+                                        core::narrow_pmax(config.cell, config.sensor.sigma),
                                         config.map.seps_levels);
   s.max_seps_index = s.codec.max_index();
-  s.ism = core::make_index_ism_table(core::GaussianBeamModel{config.beam.sigma, 0.0}, config.cell,
+  s.ism = core::make_index_ism_table(core::GaussianBeamModel{config.sensor.sigma, 0.0}, config.cell,
                                      s.codec, std::max<std::int32_t>(1, s.cell_mm / 8),
                                      s.max_range_mm, config.map.empty_divisor);
 

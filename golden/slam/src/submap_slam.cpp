@@ -102,8 +102,7 @@ void check_submap_slam_config(const SubmapSlamConfig& c) {
   require_field(c.threads >= 0 && c.threads <= 256, "threads", "must be 0..256 (0: every core)");
   require_field(c.headings >= 64 && c.headings <= 16384 && (c.headings & (c.headings - 1)) == 0,
                 "headings", "must be a power of two from 64 to 16384");
-  require_field(positive(c.sensor.sigma) && c.sensor.sigma >= 0.001 && c.sensor.sigma <= 1.0,
-                "sensor.sigma", "must be in [0.001, 1] metres");
+  core::check_range_sensor(c.sensor, "sensor");
   // The submaps' S_eps codec needs the ISM's Pmax in (1/2, 1) and eps in (0, 1/2).
   try {
     (void)make_codec(c);
@@ -112,8 +111,7 @@ void check_submap_slam_config(const SubmapSlamConfig& c) {
                                       " m with sensor.sigma " + core::number_text(c.sensor.sigma) +
                                       " m gives no S_eps codec: " + e.what());
   }
-  require_field(positive(c.sensor.max_range) && c.sensor.max_range <= 200.0 &&
-                    c.sensor.max_range >= 2.0 * c.cell,
+  require_field(c.sensor.max_range <= 200.0 && c.sensor.max_range >= 2.0 * c.cell,
                 "sensor.max_range", "must be in [2 cells, 200] metres");
   require_field(c.map.seps_bits >= 2 && c.map.seps_bits <= 8, "map.seps_bits",
                 "must be 2..8 (the map is 8-bit)");

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "intgrid/core/range_sensor.hpp"
+
 namespace intgrid::localization {
 
 enum class GlobalMethod {
@@ -15,11 +17,10 @@ enum class GlobalMethod {
 };
 
 struct GlobalLocConfig {
-  double pose_res = 0.2;    // pose-grid step (m); not finer than the map's resolution
-  int headings = 64;        // heading bins, also the rays' direction bins
-  double sigma = 0.03;      // range noise of the readings (m)
-  double max_range = 30.0;  // readings at or past this are not used (m)
-  int seps_bits = 8;        // per-reading index width
+  double pose_res = 0.2;                 // pose-grid step (m); not finer than the map's resolution
+  int headings = 64;                     // heading bins, also the rays' direction bins
+  core::RangeSensor sensor{0.03, 30.0};  // the readings' noise and range
+  int seps_bits = 8;                     // per-reading index width
   // Each reading's claims are quantized with its own eps, such that its strongest claim is this
   // index: with one eps for all, a far reading (sigma_eff grows with the heading step times z)
   // claims 0 to 2 against a near one's 16, and a pose near any wall outscores the true one.

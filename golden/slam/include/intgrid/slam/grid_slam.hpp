@@ -34,7 +34,7 @@ QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_
 inline QuantizedScan quantize_scan(const core::Scan& scan, const core::Pose2* previous_robot,
                                    const GridSlamConfig& config, const std::string& name,
                                    std::size_t& readings, std::size_t& unusable) {
-  return quantize_scan(scan, previous_robot, config.beam.max_range, name, readings, unusable);
+  return quantize_scan(scan, previous_robot, config.sensor.max_range, name, readings, unusable);
 }
 
 class GridSlam {

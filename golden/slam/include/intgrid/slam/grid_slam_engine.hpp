@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "intgrid/core/grid.hpp"
+#include "intgrid/core/range_sensor.hpp"
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/core/seps.hpp"
 #include "intgrid/core/types.hpp"
@@ -36,9 +37,11 @@ struct GridSlamConfig {
     int xi = 1;
   } schedule;
 
+  // The range sensor (sigma 5 cm, as the bundled log's map was built; readings to 30 m).
+  core::RangeSensor sensor{0.05, 30.0};
+
   // The beam model of the localization event.
   struct BeamModel {
-    double sigma = 0.05;             // range noise (m)
     double likelihood_floor = 1e-3;  // p(z | x, M) for readings the map cannot explain
     int beams = 90;                  // readings a localization uses, spread evenly over the scan
     // The localization multiplies Pi by the beams' likelihood raised to 1 / tempering: the beams
@@ -47,7 +50,6 @@ struct GridSlamConfig {
     // rounding. 16 is the smallest tempering at which the bundled real log's E(sigma) reaches
     // that rounding, cell sqrt(2/12) (41 mm at 10 cm), in both arithmetics (docs/results.md).
     int tempering = 16;
-    double max_range = 30.0;  // readings at or past this are not used (m)
   } beam;
 
   // Spread of the motion model: sigma_xy = xy0 + xy_per_m |translation| + xy_per_rad |rotation|,

@@ -20,6 +20,7 @@
 
 #include "intgrid/core/grid.hpp"
 #include "intgrid/core/mapping.hpp"
+#include "intgrid/core/range_sensor.hpp"
 #include "intgrid/core/seps.hpp"
 #include "intgrid/core/types.hpp"
 #include "intgrid/slam/log_run.hpp"
@@ -35,17 +36,14 @@ struct SubmapSlamConfig {
   // for every core, at most 256. The result is the same, bit for bit, for any count.
   int threads = 1;
 
-  struct Sensor {
-    // Range noise of the beam model the ISM is built on (m). The exact ISM raises the cells just
-    // past a reading (the first obstacle may lie there) and nothing clears them from behind, so
-    // a fused wall leans outward by a part of sigma, and every match pulls the scan outward with
-    // it: the SLAM's translation comes out too long. Measured on the simulated 13-minute loop
-    // (SubmapSlamLongLoop, exact walls): 0.34% too long at 0.05 m, 0.18% at 0.03, none at 0.02,
-    // where the maps turn too sharp for its loop to close (ATE 3.1 m). 0.03 was chosen there;
-    // held out, Intel 0.0228 -> 0.0207 m, ACES 0.0403 -> 0.0397 m, Telecom 0.149 -> 0.138 m.
-    double sigma = 0.03;
-    double max_range = 30.0;  // readings at or past this are not used (m)
-  } sensor;
+  // The range sensor. sigma: the exact ISM raises the cells just past a reading (the first
+  // obstacle may lie there) and nothing clears them from behind, so a fused wall leans outward
+  // by a part of sigma, and every match pulls the scan outward with it: the SLAM's translation
+  // comes out too long. Measured on the simulated 13-minute loop (SubmapSlamLongLoop, exact
+  // walls): 0.34% too long at 0.05 m, 0.18% at 0.03, none at 0.02, where the maps turn too sharp
+  // for its loop to close (ATE 3.1 m). 0.03 was chosen there; held out, Intel 0.0228 -> 0.0207 m,
+  // ACES 0.0403 -> 0.0397 m, Telecom 0.149 -> 0.138 m. max_range: 30 m, at most 200 m here.
+  core::RangeSensor sensor{0.03, 30.0};
 
   // The submaps' S_eps grids.
   struct Map {
