@@ -6,8 +6,12 @@
 // in the same order, the same sums.
 //
 // Only the form differs, for hardware:
-//   - the sine table is a quarter wave, kQuarterTurn + 1 entries; the other quadrants by symmetry
-//     (equal to golden's whole table at every angle, testbench/mapping_engine_hls_test.cpp);
+//   - the sine table is a quarter wave, kQuarterTurn + 1 entries, the other quadrants by symmetry,
+//     held as every 16th entry (kSineCoarse of 17 bits) and the 3-bit steps after each (15 in a
+//     45-bit word a block): 63 kbit instead of 278. Golden's table rises by 0 to 7 from one
+//     entry to the next (testbench/mapping_engine_table.hpp checks it when it packs the table),
+//     and the lookups are equal to golden's whole table at every angle
+//     (testbench/mapping_engine_hls_test.cpp);
 //   - the line-of-sight cell k = (d + c/2) / c, a division a cell in golden, is a counter: the
 //     projection d of a visited cell's centre never decreases along a ray and grows by at most
 //     one cell a step, so k steps by one where d passes its next threshold;
@@ -42,6 +46,10 @@ inline constexpr int kCellBits = 14;   // cells of 1 .. 10^4 mm
 inline constexpr int kWalkBits = kRangeBits + 21;
 inline constexpr int kCoordBits = 26;
 inline constexpr int kQuarterTurn = 16384;  // angle units (2^16 a turn)
+inline constexpr int kSineBlock = 16;       // quarter-wave entries a coarse entry covers
+inline constexpr int kSineCoarse = kQuarterTurn / kSineBlock + 1;  // 1025: 0, 16, .., 16384
+inline constexpr int kSineStepBits = 3;                            // a step of 0..7
+using SineSteps = uint<(kSineBlock - 1) * kSineStepBits>;          // steps 16 j + 1 .. 16 j + 15
 using Angle = uint<16>;
 using Sine = sint<18>;
 using Count = uint<kRangeBits + 1>;
@@ -88,8 +96,28 @@ class MappingEngine {
   };
 
   void configure(const Settings& settings) { settings_ = settings; }
-  // sin(2 pi a / 2^16) 2^16 rounded, a = 0 .. kQuarterTurn (golden's make_sine_table_q16).
-  void load_sine(int a, uint<17> value) { quarter_sine_[static_cast<std::uint32_t>(a)] = value; }
+  // The quarter-wave sine S(a) = sin(2 pi a / 2^16) 2^16 rounded (golden's make_sine_table_q16):
+  // S(16 j) for j = 0 .. kSineCoarse - 1, and the steps S(16 j + i) - S(16 j + i - 1), i = 1..15
+  // (3 bits each, step i at bits 3 (i - 1) and up).
+  void load_sine_coarse(int j, uint<17> value) {
+    sine_coarse_[static_cast<std::uint32_t>(j)] = value;
+  }
+  void load_sine_steps(int j, mapping::SineSteps steps) {
+    sine_steps_[static_cast<std::uint32_t>(j)] = steps;
+  }
+  // S(e), e = 0 .. kQuarterTurn: the coarse entry below plus the steps up to e.
+  uint<17> quarter_sine(std::uint32_t e) const {
+    const std::uint32_t j = e / mapping::kSineBlock, r = e % mapping::kSineBlock;
+    const mapping::SineSteps steps = sine_steps_[j % (mapping::kSineCoarse - 1)];
+    uint<7> rise = 0;  // at most 15 steps of 7
+    for (int i = 1; i < mapping::kSineBlock; ++i) {
+      INTGRID_HLS_PRAGMA("HLS UNROLL")
+      const auto step =
+          static_cast<std::uint32_t>((steps.value() >> ((i - 1) * mapping::kSineStepBits)) & 7);
+      if (static_cast<std::uint32_t>(i) <= r) rise = rise + uint<3>(step);
+    }
+    return sine_coarse_[j] + rise;
+  }
   void load_bin(int bin, const Bin& value) { bins_[static_cast<std::uint32_t>(bin)] = value; }
   void load_tail(int address, sint<B> value) { tail_[static_cast<std::uint32_t>(address)] = value; }
   // Every cell back to "no information" (index 0).
@@ -104,7 +132,7 @@ class MappingEngine {
     const std::uint32_t angle = a;
     const std::uint32_t quadrant = angle >> 14, within = angle & (mapping::kQuarterTurn - 1);
     const std::uint32_t entry = (quadrant & 1u) != 0 ? mapping::kQuarterTurn - within : within;
-    const uint<17> magnitude = quarter_sine_[entry];
+    const uint<17> magnitude = quarter_sine(entry);
     return quadrant >= 2 ? mapping::Sine(-magnitude) : mapping::Sine(magnitude);
   }
   mapping::Sine cos(mapping::Angle a) const {
@@ -258,7 +286,8 @@ class MappingEngine {
 
   Settings settings_{};
   ScanPose pose_{};
-  std::array<uint<17>, mapping::kQuarterTurn + 1> quarter_sine_{};
+  std::array<uint<17>, mapping::kSineCoarse> sine_coarse_{};
+  std::array<mapping::SineSteps, mapping::kSineCoarse - 1> sine_steps_{};
   std::array<Bin, BINS> bins_{};
   std::array<sint<B>, TAIL_CELLS> tail_{};
   std::array<uint<B>, static_cast<std::size_t>(kSide) * kSide> tile_{};

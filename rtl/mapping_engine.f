@@ -3,4 +3,5 @@
 saturating_add.sv
 sdp_ram.sv
 mapping_engine_divider.sv
+mapping_engine_sine.sv
 mapping_engine.sv

@@ -40,7 +40,7 @@ module mapping_engine #(
   output logic               idle_o,
   // load port
   input  logic               ld_valid_i,
-  input  logic [1:0]         ld_target_i,  // 0 settings, 1 sine, 2 ISM bin, 3 tail
+  input  logic [2:0]         ld_target_i,  // 0 settings, 1 sine coarse, 2 sine steps, 3 bin, 4 tail
   input  logic [15:0]        ld_addr_i,
   input  logic [63:0]        ld_data_i
 );
@@ -75,18 +75,19 @@ module mapping_engine #(
   // ---- settings and loads ----------------------------------------------------------------------
   logic [CellBits-1:0]  cell_q;
   logic [RangeBits-1:0] z_step_q, max_range_q;
-  logic                 load_sine, load_bin, load_tail;
+  logic                 load_sine_coarse, load_sine_steps, load_bin, load_tail;
 
-  assign load_sine = ld_valid_i && ld_target_i == 2'd1 && ld_addr_i <= 16'(Quarter);
-  assign load_bin  = ld_valid_i && ld_target_i == 2'd2 && 32'(ld_addr_i) < BINS;
-  assign load_tail = ld_valid_i && ld_target_i == 2'd3 && 32'(ld_addr_i) < TAIL_CELLS;
+  assign load_sine_coarse = ld_valid_i && ld_target_i == 3'd1 && ld_addr_i < 16'd1025;
+  assign load_sine_steps  = ld_valid_i && ld_target_i == 3'd2 && ld_addr_i < 16'd1024;
+  assign load_bin         = ld_valid_i && ld_target_i == 3'd3 && 32'(ld_addr_i) < BINS;
+  assign load_tail        = ld_valid_i && ld_target_i == 3'd4 && 32'(ld_addr_i) < TAIL_CELLS;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       cell_q      <= '0;
       z_step_q    <= '0;
       max_range_q <= '0;
-    end else if (ld_valid_i && ld_target_i == 2'd0) begin
+    end else if (ld_valid_i && ld_target_i == 3'd0) begin
       if (ld_addr_i == 16'd0) cell_q <= ld_data_i[CellBits-1:0];
       if (ld_addr_i == 16'd1) z_step_q <= ld_data_i[RangeBits-1:0];
       if (ld_addr_i == 16'd2) max_range_q <= ld_data_i[RangeBits-1:0];
@@ -169,7 +170,8 @@ module mapping_engine #(
     .rdata_o(bin_entry)
   );
 
-  // The quarter-wave sine, twice: sin and cos read in the same cycle, the first of the set-up.
+  // The quarter-wave sine, looked up twice in the set-up: sin at its first cycle, cos at its
+  // second, each magnitude kept from the cycle after its lookup.
   // Quadrant q of angle a: sin a = (q < 2 ? +1 : -1) S[q odd ? 2^14 - w : w], w = a mod 2^14.
   assign angle     = heading_q + slot_angle_q;
   assign sin_entry = angle[14] ? 15'(Quarter) - 15'(angle[13:0]) : 15'(angle[13:0]);
@@ -177,30 +179,31 @@ module mapping_engine #(
   assign cos_angle = angle + 16'(Quarter);
   assign cos_entry = cos_angle[14] ? 15'(Quarter) - 15'(cos_angle[13:0]) : 15'(cos_angle[13:0]);
 
-  sdp_ram #(
-    .WIDTH(17),
-    .DEPTH(Quarter + 1)
-  ) i_sine_for_sin (
+  logic [16:0] sine_magnitude;
+  logic        sin_lookup, cos_lookup;
+  assign sin_lookup = slot_full_q && countdown_q == 5'(SetupCycles);
+  assign cos_lookup = slot_full_q && countdown_q == 5'(SetupCycles - 1);
+
+  mapping_engine_sine i_sine (
     .clk_i,
-    .we_i   (load_sine),
-    .waddr_i(ld_addr_i[14:0]),
-    .wdata_i(ld_data_i[16:0]),
-    .re_i   (slot_full_q && countdown_q == 5'(SetupCycles)),
-    .raddr_i(sin_entry),
-    .rdata_o(sin_magnitude)
+    .we_coarse_i(load_sine_coarse),
+    .we_steps_i (load_sine_steps),
+    .waddr_i    (ld_addr_i[10:0]),
+    .wdata_i    (ld_data_i[44:0]),
+    .re_i       (sin_lookup || cos_lookup),
+    .entry_i    (sin_lookup ? sin_entry : cos_entry),
+    .magnitude_o(sine_magnitude)
   );
-  sdp_ram #(
-    .WIDTH(17),
-    .DEPTH(Quarter + 1)
-  ) i_sine_for_cos (
-    .clk_i,
-    .we_i   (load_sine),
-    .waddr_i(ld_addr_i[14:0]),
-    .wdata_i(ld_data_i[16:0]),
-    .re_i   (slot_full_q && countdown_q == 5'(SetupCycles)),
-    .raddr_i(cos_entry),
-    .rdata_o(cos_magnitude)
-  );
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      sin_magnitude <= '0;
+      cos_magnitude <= '0;
+    end else begin
+      if (cos_lookup) sin_magnitude <= sine_magnitude;  // sin's result, the cycle after its lookup
+      if (slot_full_q && countdown_q == 5'(SetupCycles - 2)) cos_magnitude <= sine_magnitude;
+    end
+  end
 
   // ---- the scan's pose -------------------------------------------------------------------------
   logic signed [CoordBits-1:0] cx_q, cy_q;

@@ -18,9 +18,10 @@
 //   read port       rd_addr_i (y * side + x) in, the cell on rd_data_o the next cycle; served
 //                   when nothing is in flight (idle_o), rd_ready_o combinational.
 //   load port       one write a cycle (ld_valid_i) into the settings (ld_target_i 0: address 0
-//                   the cell, 1 the z step, 2 the maximum range, in mm), the quarter-wave sine
-//                   (1), an ISM bin (2: {tail, constant, core, cells} packed from bit 0 up as
-//                   kBinBits) or a tail entry (3); the host loads them once for a sensor.
+//                   the cell, 1 the z step, 2 the maximum range, in mm), the quarter-wave sine's
+//                   coarse entries (1) and steps (2, hls::MappingEngine::load_sine_steps), an
+//                   ISM bin (3: {tail, constant, core, cells} packed from bit 0 up as kBinBits)
+//                   or a tail entry (4); the host loads them once for a sensor.
 //   reset           clears the tile, a cell a cycle (kSide^2 cycles, in_ready_o low).
 #pragma once
 
@@ -66,7 +67,7 @@ struct MappingEngineModule : ::sc_core::sc_module {
   ::sc_core::sc_out<bool> idle_o{"idle_o"};  // cleared, no beat in the slot, no walk, no write
   // load port
   ::sc_core::sc_in<bool> ld_valid_i{"ld_valid_i"};
-  ::sc_core::sc_in<::sc_dt::sc_uint<2>> ld_target_i{"ld_target_i"};
+  ::sc_core::sc_in<::sc_dt::sc_uint<3>> ld_target_i{"ld_target_i"};
   ::sc_core::sc_in<::sc_dt::sc_uint<16>> ld_addr_i{"ld_addr_i"};
   ::sc_core::sc_in<::sc_dt::sc_uint<64>> ld_data_i{"ld_data_i"};
 
@@ -194,9 +195,14 @@ struct MappingEngineModule : ::sc_core::sc_module {
         engine_->configure(settings_);
         break;
       case 1:
-        if (address <= hls::mapping::kQuarterTurn) engine_->load_sine(address, field(0, 17));
+        if (address < hls::mapping::kSineCoarse) engine_->load_sine_coarse(address, field(0, 17));
         break;
-      case 2: {
+      case 2:
+        if (address < hls::mapping::kSineCoarse - 1)
+          engine_->load_sine_steps(
+              address, data & ((std::uint64_t{1} << hls::mapping::SineSteps::width) - 1u));
+        break;
+      case 3: {
         if (address >= BINS) break;
         typename Engine::Bin bin;
         bin.cells = field(0, kCountBits);
@@ -206,9 +212,12 @@ struct MappingEngineModule : ::sc_core::sc_module {
         engine_->load_bin(address, bin);
         break;
       }
-      default:
+      case 4:
         if (address < TAIL_CELLS)
           engine_->load_tail(address, hls::sint<B>(hls::sign_extend<B>(field(0, B))));
+        break;
+      default:  // no memory
+        break;
     }
   }
 

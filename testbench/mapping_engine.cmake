@@ -29,7 +29,8 @@ gtest_discover_tests(mapping_engine_width_test TEST_PREFIX Width. PROPERTIES LAB
 
 # --- The RTL: lint, manifests ------------------------------------------------------------------
 set(_me_rtl_dir ${PROJECT_SOURCE_DIR}/rtl)
-set(_me_rtl_files saturating_add.sv sdp_ram.sv mapping_engine_divider.sv mapping_engine.sv)
+set(_me_rtl_files saturating_add.sv sdp_ram.sv mapping_engine_divider.sv mapping_engine_sine.sv
+                  mapping_engine.sv)
 list(TRANSFORM _me_rtl_files PREPEND ${_me_rtl_dir}/ OUTPUT_VARIABLE _me_rtl)
 intgrid_lint_rtl(mapping_engine_lint mapping_engine ${_me_rtl_files})
 intgrid_lint_rtl(mapping_engine_lint_b12_t4 mapping_engine -GB=12 -GTILE_BITS=4 -GBINS=300

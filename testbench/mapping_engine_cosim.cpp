@@ -50,7 +50,7 @@ struct Bench : sc_core::sc_module {
   sc_signal<sc_dt::sc_uint<2 * kTileBits>> rd_addr{"rd_addr"};
   sc_signal<sc_dt::sc_int<8>> rd_data{"rd_data"};
   sc_signal<bool> ld_valid{"ld_valid"};
-  sc_signal<sc_dt::sc_uint<2>> ld_target{"ld_target"};
+  sc_signal<sc_dt::sc_uint<3>> ld_target{"ld_target"};
   sc_signal<sc_dt::sc_uint<16>> ld_addr{"ld_addr"};
   sc_signal<sc_dt::sc_uint<64>> ld_data{"ld_data"};
   // The RTL's data inputs and outputs.
@@ -131,18 +131,20 @@ struct Bench : sc_core::sc_module {
     rtl.ld_addr_i(rtl_ld_addr);
     rtl.ld_data_i(rtl_ld_data);
     loads = {{0, 0, hw::kLogCellMm}, {0, 1, hw::kLogZStepMm}, {0, 2, hw::kLogMaxRangeMm}};
-    for (unsigned a = 0; a <= hls::mapping::kQuarterTurn; ++a)
-      loads.push_back({1, a, static_cast<std::uint64_t>(log.sine[a])});
+    for (std::size_t j = 0; j < log.packed_sine.coarse.size(); ++j)
+      loads.push_back({1, static_cast<unsigned>(j), log.packed_sine.coarse[j]});
+    for (std::size_t j = 0; j < log.packed_sine.steps.size(); ++j)
+      loads.push_back({2, static_cast<unsigned>(j), log.packed_sine.steps[j]});
     for (std::size_t bin = 0; bin < log.packed.bins.size(); ++bin) {
       const hw::PackedIsmBin& b = log.packed.bins[bin];
       constexpr int kCount = Module::kCountBits;
-      loads.push_back({2, static_cast<unsigned>(bin),
+      loads.push_back({3, static_cast<unsigned>(bin),
                        b.cells | (std::uint64_t{b.core} << kCount) |
                            (std::uint64_t{static_cast<std::uint8_t>(b.constant)} << (2 * kCount)) |
                            (std::uint64_t{b.tail} << (2 * kCount + 8))});
     }
     for (std::size_t i = 0; i < log.packed.tail.size(); ++i)
-      loads.push_back({3, static_cast<unsigned>(i),
+      loads.push_back({4, static_cast<unsigned>(i),
                        static_cast<std::uint64_t>(static_cast<std::uint8_t>(log.packed.tail[i]))});
     SC_CTHREAD(drive, clk.pos());
   }

@@ -24,8 +24,8 @@ void mapping_engine_b8_t8(MappingEngineB8T8& engine, const hls::ScanPose& pose,
 bool mapping_engine_b8_t8_self_check() {
   const auto engine = std::make_unique<MappingEngineB8T8>();
   engine->configure({50, 6, 30000});
-  for (int a = 0; a <= hls::mapping::kQuarterTurn; ++a)  // sin 0 and 1 suffice along +x
-    engine->load_sine(a, a == hls::mapping::kQuarterTurn ? 65536 : 0);
+  // sin 0 and 1 suffice along +x: the coarse entries at 0 and a quarter turn, no steps.
+  engine->load_sine_coarse(hls::mapping::kSineCoarse - 1, 65536);
   // 1 m in bin 167: 20 cells, the first 18 empty (-3), then +20 and +40.
   engine->load_bin(167, {20, 18, -3, 0});
   engine->load_tail(0, 20);

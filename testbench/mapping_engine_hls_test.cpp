@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -50,8 +52,11 @@ class WidthGuard {
 
 std::unique_ptr<Engine> engine_with_sine(const std::vector<std::int32_t>& sine) {
   auto engine = std::make_unique<Engine>();
-  for (int a = 0; a <= hls::mapping::kQuarterTurn; ++a)
-    engine->load_sine(a, static_cast<std::uint32_t>(sine[static_cast<std::size_t>(a)]));
+  const PackedSine packed = pack_quarter_sine(sine);
+  for (std::size_t j = 0; j < packed.coarse.size(); ++j)
+    engine->load_sine_coarse(static_cast<int>(j), packed.coarse[j]);
+  for (std::size_t j = 0; j < packed.steps.size(); ++j)
+    engine->load_sine_steps(static_cast<int>(j), packed.steps[j]);
   return engine;
 }
 
@@ -63,6 +68,19 @@ TEST(MappingEngineHls, QuarterWaveSineIsGoldensTableAtEveryAngle) {
   for (std::int32_t a = 0; a < 65536; ++a) {
     ASSERT_EQ(engine->sin(hls::mapping::Angle(a)).value(), rays.sin(a)) << "angle " << a;
     ASSERT_EQ(engine->cos(hls::mapping::Angle(a)).value(), rays.cos(a)) << "angle " << a;
+  }
+}
+
+// The packed form holds only steps of 0..7: a table that rises faster is refused, by entry.
+TEST(MappingEngineHls, SinePackingRefusesAStepPastThreeBits) {
+  std::vector<std::int32_t> sine = core::make_sine_table_q16();
+  EXPECT_NO_THROW(pack_quarter_sine(sine));
+  sine[37] += 8;
+  try {
+    pack_quarter_sine(sine);
+    ADD_FAILURE() << "a step of 8 or more was packed";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("entry 37"), std::string::npos) << e.what();
   }
 }
 

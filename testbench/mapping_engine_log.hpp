@@ -44,6 +44,7 @@ struct EngineScan {
 
 struct EngineLog {
   std::vector<std::int32_t> sine;  // golden's whole table
+  PackedSine packed_sine;          // its quarter wave in the engine's form
   core::NarrowIsmTable table;
   PackedIsmTable packed;
   std::vector<EngineScan> scans;
@@ -55,6 +56,7 @@ struct EngineLog {
 inline EngineLog empty_engine_log(int side) {
   EngineLog out;
   out.sine = core::make_sine_table_q16();
+  out.packed_sine = pack_quarter_sine(out.sine);
   out.table = log_ism_table();
   out.packed = pack_ism_table(out.table);
   out.max_index = log_codec().max_index();
@@ -138,12 +140,14 @@ inline EngineLog tie_scans(int side) {
   return out;
 }
 
-// An engine's memories loaded for the log: the quarter-wave sine, the packed ISM table.
+// An engine's memories loaded for the log: the packed quarter-wave sine, the packed ISM table.
 template <class Engine>
 void load_engine(Engine& engine, const EngineLog& log) {
   engine.configure({kLogCellMm, kLogZStepMm, kLogMaxRangeMm});
-  for (int a = 0; a <= hls::mapping::kQuarterTurn; ++a)
-    engine.load_sine(a, static_cast<std::uint32_t>(log.sine[static_cast<std::size_t>(a)]));
+  for (std::size_t j = 0; j < log.packed_sine.coarse.size(); ++j)
+    engine.load_sine_coarse(static_cast<int>(j), log.packed_sine.coarse[j]);
+  for (std::size_t j = 0; j < log.packed_sine.steps.size(); ++j)
+    engine.load_sine_steps(static_cast<int>(j), log.packed_sine.steps[j]);
   for (std::size_t bin = 0; bin < log.packed.bins.size(); ++bin) {
     const PackedIsmBin& b = log.packed.bins[bin];
     engine.load_bin(static_cast<int>(bin), {b.cells, b.core, b.constant, b.tail});
