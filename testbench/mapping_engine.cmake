@@ -7,6 +7,7 @@
 #   rtl_manifest_mapping_engine  rtl/mapping_engine.f, .core and Bender.yml list the sources
 #   mapping_engine_cosim       the Verilated RTL beside the SystemC model on the bundled log, each
 #                              against golden and against each other every cycle
+#   mapping_engine_cosim_catches_fault  the same on a deliberately broken RTL must see it differ
 find_package(GTest REQUIRED)
 # The bundled log's ISM table's bins (testbench/mapping_engine_log.hpp: 30 m in 6 mm bins).
 set(INTGRID_MAPPING_ENGINE_LOG_BINS 5002)
@@ -54,3 +55,21 @@ verilate(mapping_engine_cosim SYSTEMC SOURCES ${_me_rtl} TOP_MODULE mapping_engi
                         --x-assign unique --x-initial unique OPT_FAST -w OPT_SLOW -w OPT_GLOBAL -w)
 add_test(NAME mapping_engine_cosim COMMAND mapping_engine_cosim)
 set_tests_properties(mapping_engine_cosim PROPERTIES LABELS hw)
+
+# The co-simulation's self-test: the same program on the RTL with engine_threshold_tie
+# (rtl_faults.cmake) must report cycles where the RTL and the model differ, on the ties.
+set(_me_fault_rtl ${_me_rtl})
+intgrid_testbench_fault(_me_fault_rtl engine_threshold_tie)
+add_executable(mapping_engine_cosim_fault mapping_engine_cosim.cpp)
+target_link_libraries(mapping_engine_cosim_fault PRIVATE intgrid_systemc intgrid_core intgrid_io
+                                                         intgrid_test_data_dir)
+target_include_directories(mapping_engine_cosim_fault PRIVATE ${PROJECT_SOURCE_DIR})
+target_include_directories(mapping_engine_cosim_fault SYSTEM PRIVATE ${VERILATOR_ROOT}/include
+                                                                     ${VERILATOR_ROOT}/include/vltstd)
+verilate(mapping_engine_cosim_fault SYSTEMC SOURCES ${_me_fault_rtl} TOP_MODULE mapping_engine
+         PREFIX Vmapping_engine_sc
+         VERILATOR_ARGS -GBINS=${INTGRID_MAPPING_ENGINE_LOG_BINS} -GTAIL_CELLS=1024 --assert
+                        --x-assign unique --x-initial unique OPT_FAST -w OPT_SLOW -w OPT_GLOBAL -w)
+add_test(NAME mapping_engine_cosim_catches_fault COMMAND mapping_engine_cosim_fault)
+set_tests_properties(mapping_engine_cosim_catches_fault PROPERTIES LABELS hw
+  PASS_REGULAR_EXPRESSION "\"stimulus\": \"ties\"[^}]*\"rtl_model_cycle_mismatches\": [1-9]")

@@ -52,6 +52,11 @@ function(intgrid_testbench_fault sources fault)
     intgrid_rtl_fault(${sources} ${fault} sectoral_ism_log_add.sv
       "assign phi_addr = distance[PHI_AW-1:0];"
       "assign phi_addr = distance[PHI_AW-1:0] + PHI_AW'(1);")
+  elseif(fault STREQUAL engine_threshold_tie)
+    # The mapping engine's line-of-sight cell counts a threshold only once d has passed it, not
+    # when d lands on it: k one short at exact ties, which a real log's rays seldom reach.
+    intgrid_rtl_fault(${sources} ${fault} mapping_engine.sv
+      "if (d_step >= next_q) begin" "if (d_step > next_q) begin")
   else()
     message(FATAL_ERROR "intgrid_testbench_fault: no fault named ${fault}")
   endif()
