@@ -16,6 +16,7 @@
 #include "cli/output_folder_option.hpp"
 #include "cli/progress.hpp"
 #include "intgrid/core/parallel.hpp"
+#include "intgrid/core/trajectory.hpp"
 #include "intgrid/figures/bitmap_font.hpp"
 #include "intgrid/io/atomic_file.hpp"
 #include "intgrid/io/image_io.hpp"
@@ -82,10 +83,10 @@ void check_map(const io::RosMap& map, const std::filesystem::path& file,
 }
 
 // The reference pose at time t, if the reference has one then.
-std::optional<core::Pose2> reference_at(const std::vector<slam::TimedPose>& reference, double t) {
+std::optional<core::Pose2> reference_at(const std::vector<core::TimedPose>& reference, double t) {
   const auto it =
       std::lower_bound(reference.begin(), reference.end(), t - kTimeMatch,
-                       [](const slam::TimedPose& p, double time) { return p.t < time; });
+                       [](const core::TimedPose& p, double time) { return p.t < time; });
   if (it != reference.end() && std::abs(it->t - t) <= kTimeMatch) return it->pose;
   return std::nullopt;
 }
@@ -319,7 +320,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   if (!(o.track_step_position >= 0.0) || !(o.track_step_heading >= 0.0) ||
       !std::isfinite(o.track_step_position) || !std::isfinite(o.track_step_heading))
     bad_option("--track-step", "must be finite and non-negative");
-  std::optional<std::vector<slam::TimedPose>> reference;
+  std::optional<std::vector<core::TimedPose>> reference;
   const std::optional<std::filesystem::path>& reference_file =
       o.reference ? o.reference : o.reference_trajectory;
   if (o.reference) {
@@ -329,7 +330,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
     reference.emplace();
     for (const core::Scan& scan : log_reference.scans) reference->push_back({scan.t, scan.robot});
     std::stable_sort(reference->begin(), reference->end(),
-                     [](const slam::TimedPose& a, const slam::TimedPose& b) { return a.t < b.t; });
+                     [](const core::TimedPose& a, const core::TimedPose& b) { return a.t < b.t; });
   } else if (o.reference_trajectory) {
     reference = io::read_trajectory(*o.reference_trajectory);
   }

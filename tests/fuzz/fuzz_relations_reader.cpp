@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::vector<io::RelationRecord> records = io::read_relations(file);
     fuzz::require(!records.empty());
     for (std::size_t i = 0; i < records.size(); ++i) {
-      const slam::Relation& r = records[i].relation;
+      const core::Relation& r = records[i].relation;
       fuzz::require(std::isfinite(r.t1) && std::isfinite(r.t2) && std::isfinite(r.motion.x) &&
                     std::isfinite(r.motion.y) && std::isfinite(r.motion.theta));
       fuzz::require(records[i].line >= 1 && (i == 0 || records[i - 1].line < records[i].line));

@@ -46,7 +46,7 @@ TEST(RelationsIo, ReadsRelationsWithTheirLinesSkippingCommentsAndBlankLines) {
   EXPECT_EQ(r[2].line, 7u);
   EXPECT_EQ(r[2].relation.motion, (core::Pose2{1e-3, -20, -3}));  // z, roll, pitch not used
 
-  const std::vector<slam::Relation> plain = io::relations_of(r);
+  const std::vector<core::Relation> plain = io::relations_of(r);
   ASSERT_EQ(plain.size(), 3u);
   EXPECT_EQ(plain[2].t1, 3.0);
 }
@@ -99,7 +99,7 @@ TEST(TrajectoryIo, ReadsTheSlamTrajectoryAndNamesEveryBadField) {
   const TempDir dir;
   const auto good =
       dir.write("trajectory.txt", "# t x y theta\n1.5 0.25 -3 0.1\n\n2 1e-3 4 -3.1\r\n");
-  const std::vector<slam::TimedPose> poses = io::read_trajectory(good);
+  const std::vector<core::TimedPose> poses = io::read_trajectory(good);
   ASSERT_EQ(poses.size(), 2u);
   EXPECT_EQ(poses[0].t, 1.5);
   EXPECT_EQ(poses[0].pose.x, 0.25);
@@ -124,7 +124,7 @@ TEST(TrajectoryIo, ReadsTheSlamTrajectoryAndNamesEveryBadField) {
 
 TEST(TumTrajectory, WritesOneLinePerPoseThatReadsBackExactly) {
   const TempDir dir;
-  const std::vector<slam::TimedPose> trajectory = {
+  const std::vector<core::TimedPose> trajectory = {
       {1137834225.713386, {0.1, -2.5, 0.0}},
       {1137834226.1, {1.0 / 3.0, 4.0, std::numbers::pi / 2}},
       {1137834227.25, {-7.0, 1e-9, -3.0}},
@@ -143,7 +143,7 @@ TEST(TumTrajectory, WritesOneLinePerPoseThatReadsBackExactly) {
     ASSERT_TRUE(fields >> t >> x >> y >> z >> qx >> qy >> qz >> qw) << line;
     std::string rest;
     EXPECT_FALSE(fields >> rest) << line;
-    const slam::TimedPose& p = trajectory[i];
+    const core::TimedPose& p = trajectory[i];
     EXPECT_EQ(t, p.t) << line;
     EXPECT_EQ(x, p.pose.x) << line;
     EXPECT_EQ(y, p.pose.y) << line;

@@ -90,8 +90,8 @@ std::vector<RelationRecord> read_relations(const fs::path& file) {
   return records;
 }
 
-std::vector<slam::TimedPose> read_trajectory(const fs::path& file) {
-  std::vector<slam::TimedPose> poses;
+std::vector<core::TimedPose> read_trajectory(const fs::path& file) {
+  std::vector<core::TimedPose> poses;
   for_each_record(read_input_file(file), [&](std::size_t line, std::string_view text) {
     const auto v = parse_fields(file, line, text, kPoseFields, "a pose is t x y theta");
     if (!poses.empty() && v[0] < poses.back().t)
@@ -103,16 +103,16 @@ std::vector<slam::TimedPose> read_trajectory(const fs::path& file) {
   return poses;
 }
 
-std::vector<slam::Relation> relations_of(std::span<const RelationRecord> records) {
-  std::vector<slam::Relation> out;
+std::vector<core::Relation> relations_of(std::span<const RelationRecord> records) {
+  std::vector<core::Relation> out;
   out.reserve(records.size());
   for (const RelationRecord& r : records) out.push_back(r.relation);
   return out;
 }
 
-void write_tum_trajectory(const fs::path& file, std::span<const slam::TimedPose> trajectory) {
+void write_tum_trajectory(const fs::path& file, std::span<const core::TimedPose> trajectory) {
   write_file_atomically(file, [&](std::ostream& out) {
-    for (const slam::TimedPose& p : trajectory) {
+    for (const core::TimedPose& p : trajectory) {
       const double half = core::wrap_angle(p.pose.theta) / 2.0;
       out << format_number(p.t) << ' ' << format_number(p.pose.x) << ' ' << format_number(p.pose.y)
           << " 0 0 0 " << format_number(std::sin(half)) << ' ' << format_number(std::cos(half))

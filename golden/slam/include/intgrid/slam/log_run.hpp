@@ -10,15 +10,13 @@
 #include "intgrid/core/grid.hpp"
 #include "intgrid/core/mapping.hpp"
 #include "intgrid/core/seps.hpp"
+#include "intgrid/core/trajectory.hpp"
 #include "intgrid/core/types.hpp"
 #include "intgrid/slam/grid_slam_engine.hpp"
 
 namespace intgrid::slam {
 
-struct TimedPose {
-  double t = 0.0;
-  core::Pose2 pose;
-};
+using core::TimedPose;
 
 struct SlamRun {
   std::vector<TimedPose> trajectory;  // one per scan, in the log's frame

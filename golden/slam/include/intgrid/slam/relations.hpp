@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "intgrid/core/trajectory.hpp"
 #include "intgrid/core/types.hpp"
 #include "intgrid/slam/log_run.hpp"
 
@@ -15,11 +16,7 @@ namespace intgrid::slam {
 
 // The true motion from the robot's pose at t1 to its pose at t2, expressed in the frame of the
 // pose at t1 (t1, t2 in seconds, as the trajectory's times).
-struct Relation {
-  double t1 = 0.0;
-  double t2 = 0.0;
-  core::Pose2 motion;
-};
+using core::Relation;
 
 // A relation is off when its translational error exceeds kRelationOffMetres or its rotational
 // error kRelationOffDegrees: the bounds of the SLAM's benchmark targets (docs/results.md: at

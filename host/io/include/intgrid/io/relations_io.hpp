@@ -7,15 +7,14 @@
 #include <span>
 #include <vector>
 
-#include "intgrid/slam/log_run.hpp"
-#include "intgrid/slam/relations.hpp"
+#include "intgrid/core/trajectory.hpp"
 
 namespace intgrid::io {
 
 // One relation and the line it was read from (1-based), for messages about it.
 struct RelationRecord {
   std::size_t line = 0;
-  slam::Relation relation;
+  core::Relation relation;
 };
 
 // Reads a relations file: one relation a line, `t1 t2 x y z roll pitch yaw` (seconds, metres,
@@ -31,16 +30,16 @@ std::vector<RelationRecord> read_relations(const std::filesystem::path& file);
 // InputError naming file, line and field (t, x, y, theta) for a missing, unparsable or non-finite
 // field, an extra one or a time earlier than the line before, and (line 0, field "poses") for a
 // file without any pose.
-std::vector<slam::TimedPose> read_trajectory(const std::filesystem::path& file);
+std::vector<core::TimedPose> read_trajectory(const std::filesystem::path& file);
 
 // The relations of records, in order.
-std::vector<slam::Relation> relations_of(std::span<const RelationRecord> records);
+std::vector<core::Relation> relations_of(std::span<const RelationRecord> records);
 
 // Writes trajectory atomically in the TUM format: one line a pose, `t x y z qx qy qz qw`, z = 0,
 // the unit quaternion of the heading (qx = qy = 0, qz = sin(theta / 2), qw = cos(theta / 2) with
 // theta wrapped to (-pi, pi], so qw >= 0), every number with the shortest digits that read back
 // to the same double. No header line. Throws std::runtime_error if writing fails.
 void write_tum_trajectory(const std::filesystem::path& file,
-                          std::span<const slam::TimedPose> trajectory);
+                          std::span<const core::TimedPose> trajectory);
 
 }  // namespace intgrid::io
