@@ -43,16 +43,21 @@ set_tests_properties(rtl_manifest_mapping_engine PROPERTIES LABELS hw)
 
 # --- The co-simulation: the Verilated RTL beside the SystemC model on the bundled log, random
 # gaps and back-pressure (INTGRID_TB_SEED) -------------------------------------------------------
-add_executable(mapping_engine_cosim mapping_engine_cosim.cpp)
-target_link_libraries(mapping_engine_cosim PRIVATE intgrid_systemc intgrid_core intgrid_io
-                                                   intgrid_test_data_dir)
-target_include_directories(mapping_engine_cosim PRIVATE ${PROJECT_SOURCE_DIR})
-target_include_directories(mapping_engine_cosim SYSTEM PRIVATE ${VERILATOR_ROOT}/include
-                                                               ${VERILATOR_ROOT}/include/vltstd)
-verilate(mapping_engine_cosim SYSTEMC SOURCES ${_me_rtl} TOP_MODULE mapping_engine
-         PREFIX Vmapping_engine_sc
-         VERILATOR_ARGS -GBINS=${INTGRID_MAPPING_ENGINE_LOG_BINS} -GTAIL_CELLS=1024 --assert
-                        --x-assign unique --x-initial unique OPT_FAST -w OPT_SLOW -w OPT_GLOBAL -w)
+# One co-simulation program on the given RTL sources.
+function(_mapping_engine_cosim target)
+  add_executable(${target} mapping_engine_cosim.cpp)
+  target_link_libraries(${target} PRIVATE intgrid_systemc intgrid_core intgrid_io
+                                          intgrid_test_data_dir)
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_include_directories(${target} SYSTEM PRIVATE ${VERILATOR_ROOT}/include
+                                                      ${VERILATOR_ROOT}/include/vltstd)
+  verilate(${target} SYSTEMC SOURCES ${ARGN} TOP_MODULE mapping_engine PREFIX Vmapping_engine_sc
+           VERILATOR_ARGS -GBINS=${INTGRID_MAPPING_ENGINE_LOG_BINS} -GTAIL_CELLS=1024 --assert
+                          --x-assign unique --x-initial unique OPT_FAST -w OPT_SLOW -w
+                          OPT_GLOBAL -w)
+endfunction()
+
+_mapping_engine_cosim(mapping_engine_cosim ${_me_rtl})
 add_test(NAME mapping_engine_cosim COMMAND mapping_engine_cosim)
 set_tests_properties(mapping_engine_cosim PROPERTIES LABELS hw)
 
@@ -60,16 +65,7 @@ set_tests_properties(mapping_engine_cosim PROPERTIES LABELS hw)
 # (rtl_faults.cmake) must report cycles where the RTL and the model differ, on the ties.
 set(_me_fault_rtl ${_me_rtl})
 intgrid_testbench_fault(_me_fault_rtl engine_threshold_tie)
-add_executable(mapping_engine_cosim_fault mapping_engine_cosim.cpp)
-target_link_libraries(mapping_engine_cosim_fault PRIVATE intgrid_systemc intgrid_core intgrid_io
-                                                         intgrid_test_data_dir)
-target_include_directories(mapping_engine_cosim_fault PRIVATE ${PROJECT_SOURCE_DIR})
-target_include_directories(mapping_engine_cosim_fault SYSTEM PRIVATE ${VERILATOR_ROOT}/include
-                                                                     ${VERILATOR_ROOT}/include/vltstd)
-verilate(mapping_engine_cosim_fault SYSTEMC SOURCES ${_me_fault_rtl} TOP_MODULE mapping_engine
-         PREFIX Vmapping_engine_sc
-         VERILATOR_ARGS -GBINS=${INTGRID_MAPPING_ENGINE_LOG_BINS} -GTAIL_CELLS=1024 --assert
-                        --x-assign unique --x-initial unique OPT_FAST -w OPT_SLOW -w OPT_GLOBAL -w)
+_mapping_engine_cosim(mapping_engine_cosim_fault ${_me_fault_rtl})
 add_test(NAME mapping_engine_cosim_catches_fault COMMAND mapping_engine_cosim_fault)
 set_tests_properties(mapping_engine_cosim_catches_fault PROPERTIES LABELS hw
   PASS_REGULAR_EXPRESSION "\"stimulus\": \"ties\"[^}]*\"rtl_model_cycle_mismatches\": [1-9]")
