@@ -368,8 +368,7 @@ TEST(SubmapSlam, TracksASimulatedLoopFarBetterThanOdometryInDouble) {
 // (double) against the odometry's 8.4 m (0.042 / 0.043 m without young nodes matched again);
 // without the bias 0.080 / 0.107 m (measured before closures took only what their match fixes and
 // the ISM's sigma went from 5 to 3 cm).
-void holds_a_spinning_start(core::Arithmetic arithmetic) {
-  static const SimulatedRun sim = simulated_loop(2, 1.1);
+void holds_a_spin(const SimulatedRun& sim, const char* label, core::Arithmetic arithmetic) {
   const std::size_t spin = sim.truth.size() - 700;
   const SlamRun run = run_submap_slam(sim.log, SubmapSlamConfig{}, arithmetic);
   double worst_heading = 0.0;  // during the spin, against the truth: both start at the same pose
@@ -380,19 +379,52 @@ void holds_a_spinning_start(core::Arithmetic arithmetic) {
                                          2 * std::numbers::pi)));
   const TrajectoryError slam = absolute_trajectory_error(run.trajectory, sim.truth);
   const TrajectoryError odometry = absolute_trajectory_error(scan_poses(sim.log), sim.truth);
-  std::printf(
-      "spinning start: %.2f degrees off at most during the spin; ATE %.3f m, odometry %.3f m\n",
-      worst_heading * 180 / std::numbers::pi, slam.rmse, odometry.rmse);
-  EXPECT_GT(odometry.rmse, 3.0);
+  std::printf("%s: %.2f degrees off at most during the spin; ATE %.3f m, odometry %.3f m\n", label,
+              worst_heading * 180 / std::numbers::pi, slam.rmse, odometry.rmse);
   EXPECT_LT(worst_heading * 180 / std::numbers::pi, 3.0);
   EXPECT_LT(slam.rmse, 0.15);
 }
 
+const SimulatedRun& spinning_start() {
+  static const SimulatedRun run = simulated_loop(2, 1.1);
+  return run;
+}
+
 TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInInteger) {
-  holds_a_spinning_start(core::Arithmetic::integer);
+  EXPECT_GT(
+      absolute_trajectory_error(scan_poses(spinning_start().log), spinning_start().truth).rmse,
+      3.0);
+  holds_a_spin(spinning_start(), "spinning start", core::Arithmetic::integer);
 }
 TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
-  holds_a_spinning_start(core::Arithmetic::floating);
+  holds_a_spin(spinning_start(), "spinning start", core::Arithmetic::floating);
+}
+
+// The spinning start with unbiased odometry that arrives late in its second turn (once the
+// first has shown the room): every third scan carries the odometry pose of the scan before it,
+// so that one increment reports no turn and the next two scans' worth (ACES at 411.6 s: 4
+// degrees reported where the scans turned 20, the rest a scan later). The narrow window (+-8
+// degrees) cannot reach a 23-degree slip, the wide one can, and there the prediction it
+// contradicts must not veto the scan's pose. Measured: 0.43 degree off at most during the spin
+// (integer and double); 22.9 degrees when the wide search kept the odometry's prior. In the
+// first turn, with a submap of a few scans, the narrow match of a slipped scan can still score
+// above `wide_below`, and the wide search is not made: not held yet (docs/results.md).
+const SimulatedRun& spin_with_late_odometry() {
+  static const SimulatedRun run = [] {
+    SimulatedRun late = simulated_loop(2, 1.0);
+    const std::size_t spin = late.truth.size() - 700;
+    for (std::size_t i = spin / 2 + 1; i < spin; i += 3)
+      late.log.scans[i].robot = late.log.scans[i - 1].robot;
+    return late;
+  }();
+  return run;
+}
+
+TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateInInteger) {
+  holds_a_spin(spin_with_late_odometry(), "spin, odometry late", core::Arithmetic::integer);
+}
+TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateInDouble) {
+  holds_a_spin(spin_with_late_odometry(), "spin, odometry late", core::Arithmetic::floating);
 }
 
 // Sets every cell of world whose centre lies inside (x0, x1) x (y0, y1) (m) to value: a drawn

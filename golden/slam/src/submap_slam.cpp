@@ -595,8 +595,7 @@ SubmapSlam::SubmapSlam(const SubmapSlamConfig& config, core::Arithmetic arithmet
   const auto& t = config.tracking;
   s.narrow =
       search_window(t.window, t.window_degrees, t.prior_xy, t.prior_degrees, s.cell_mm, step);
-  s.wide =
-      search_window(t.wide_window, t.wide_degrees, t.prior_xy, t.prior_degrees, s.cell_mm, step);
+  s.wide = search_window(t.wide_window, t.wide_degrees, 0.0, 0.0, s.cell_mm, step);
   s.prior_xy_per_mm_q16 = std::llround(t.prior_xy_per_m * 65536.0);
   s.prior_theta_per_unit_q16 = std::llround(t.prior_degrees_per_degree * 65536.0);
   s.wide_below_permille = std::llround(t.wide_below * 1000.0);

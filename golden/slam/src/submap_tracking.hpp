@@ -22,7 +22,8 @@ struct TrackerSetup {
   std::int32_t max_range_mm = 30000;
   std::vector<std::int32_t> sin_q16;
   int max_index = 127;
-  SearchWindow narrow, wide;                  // their priors at no motion
+  SearchWindow narrow;                        // its prior at no motion
+  SearchWindow wide;                          // its prior is set per scan (LocalTracker::track)
   std::int64_t prior_xy_per_mm_q16 = 0;       // prior (mm) per mm of odometry translation, Q16
   std::int64_t prior_theta_per_unit_q16 = 0;  // prior (units) per unit of rotation, Q16
   std::int64_t wide_below_permille = 300;
@@ -114,13 +115,23 @@ TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, const SlamSensor&
     const std::int64_t translation = core::ray_detail::isqrt(dx * dx + dy * dy);
     const std::int64_t rotation =
         scan.odom_dtheta < 0 ? -std::int64_t{scan.odom_dtheta} : std::int64_t{scan.odom_dtheta};
-    SearchWindow narrow = setup_.narrow, wide = setup_.wide;
-    for (SearchWindow* w : {&narrow, &wide}) {
-      w->prior_weight_permille = typical_evidence_permille();
-      if (w->prior_xy_mm > 0) w->prior_xy_mm += (setup_.prior_xy_per_mm_q16 * translation) >> 16;
-      if (w->prior_theta_units > 0)
-        w->prior_theta_units += (setup_.prior_theta_per_unit_q16 * rotation) >> 16;
-    }
+    SearchWindow narrow = setup_.narrow;
+    narrow.prior_weight_permille = typical_evidence_permille();
+    if (narrow.prior_xy_mm > 0)
+      narrow.prior_xy_mm += (setup_.prior_xy_per_mm_q16 * translation) >> 16;
+    if (narrow.prior_theta_units > 0)
+      narrow.prior_theta_units += (setup_.prior_theta_per_unit_q16 * rotation) >> 16;
+    // The wide window is searched because the scan does not fit where the odometry puts it: the
+    // odometry's prior is what that contradicts, so there it spreads over the whole wide window
+    // and no longer vetoes the pose the scan fits (a fast spin whose odometry came 15 degrees
+    // late, ACES at 411.6 s; docs/results.md).
+    SearchWindow wide = setup_.wide;
+    wide.prior_weight_permille = narrow.prior_weight_permille;
+    if (narrow.prior_xy_mm > 0)
+      wide.prior_xy_mm = std::max(narrow.prior_xy_mm, std::int64_t{wide.cells} * setup_.cell_mm);
+    if (narrow.prior_theta_units > 0)
+      wide.prior_theta_units =
+          std::max(narrow.prior_theta_units, std::int64_t{wide.steps} * wide.step_units);
     Match<Cell> best = match_exhaustive(target, rays, points_, predicted, narrow, setup_.max_index,
                                         MatchScore<Cell>{});
     step.score_permille = static_cast<std::int64_t>(best.evidence * 1000 / MatchScore<Cell>(full));

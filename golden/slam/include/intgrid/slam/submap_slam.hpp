@@ -77,7 +77,9 @@ struct SubmapSlamConfig {
     double window = 0.3;          // translations searched: +-window (m)
     double window_degrees = 8.0;  // headings searched: +-window_degrees
     // A match scoring under this fraction of every hit on the strongest cell is searched again
-    // in the wide window: odometry that slipped.
+    // in the wide window: odometry that slipped. There the odometry's prior spreads over the
+    // whole wide window (prior_* below, grown with the motion, if larger): the scan has just
+    // contradicted the prediction, so the prediction may not veto where the scan fits.
     double wide_below = 0.03;
     double wide_window = 1.0;
     double wide_degrees = 30.0;
