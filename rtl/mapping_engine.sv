@@ -268,10 +268,10 @@ module mapping_engine #(
   assign ox    = ic2_x + c_s - x0;
   assign oy    = ic2_y + c_s - y0;
   assign limit = CountBits'(bin_cells * CountBits'(cell_q) + CountBits'(half_cell));
-  assign d0       = walk_t'(ox * cs) + walk_t'(oy * sn);
-  assign cell_q17 = walk_t'({cell_q, 17'b0});
-  assign next0    = walk_t'({CellBits'(cell_q - CellBits'(half_cell)), 17'b0});
-  assign end0     = walk_t'({CountBits'(limit) + 20'd1, 17'b0});
+  assign d0       = $signed(WalkBits'(ox * cs)) + $signed(WalkBits'(oy * sn));
+  assign cell_q17 = $signed(WalkBits'({cell_q, 17'b0}));
+  assign next0    = $signed(WalkBits'({CellBits'(cell_q - CellBits'(half_cell)), 17'b0}));
+  assign end0     = $signed(WalkBits'({CountBits'(limit) + 20'd1, 17'b0}));
   assign used_slot   = slot_range_q != '0 && slot_range_q < max_range_q;
   assign starts_walk = start && !slot_pose_q && used_slot;
 
@@ -335,10 +335,10 @@ module mapping_engine #(
         forward_y_q <= sn > 0;
         ix_q        <= CoordBits'(ix0);
         iy_q        <= CoordBits'(iy0);
-        tx_q        <= walk_t'(bx * $signed({1'b0, asn}));
-        ty_q        <= walk_t'(by * $signed({1'b0, acs}));
-        c2_cos_q    <= walk_t'(c2 * acs);
-        c2_sin_q    <= walk_t'(c2 * asn);
+        tx_q        <= $signed(WalkBits'(bx * $signed({1'b0, asn})));
+        ty_q        <= $signed(WalkBits'(by * $signed({1'b0, acs})));
+        c2_cos_q    <= $signed(WalkBits'(c2 * acs));
+        c2_sin_q    <= $signed(WalkBits'(c2 * asn));
         d_q         <= d_first;
         end_q       <= end0;
         if (d_first >= next0) begin
