@@ -5,8 +5,9 @@
 // the arithmetic and the widths).
 //
 // Micro-architecture: a one-beat command slot; a restoring divider for a used reading's range bin
-// (19 cycles, overlapped with the walk before it) and a cycle to read the bin's entry; one start
-// cycle that sets the ray up (seven multiplications); then one cell a cycle: the cell's tile and
+// (19 cycles, overlapped with the walk before it) and a cycle to read the bin's entry, during
+// which one shared multiplier forms the ray's six direction products, one a cycle; one start
+// cycle that sets the ray up (one multiplication left, the bin's length); then one cell a cycle: the cell's tile and
 // tail entries are read at the edge that steps the ray, and the fused index is written at the
 // next edge (the write stage), so the tile is a simple dual-port RAM. A reset clears the tile, a
 // cell a cycle; the load port fills the settings and memories; the read port serves the tile
@@ -243,6 +244,31 @@ module mapping_engine #(
   walk_t                       d0, next0, cell_q17, end0;
   logic                        used_slot, starts_walk;
 
+  // The direction products, one a cycle at countdowns FirstProduct .. FirstProduct - 5 (sin and
+  // cos are both held from countdown SetupCycles - 3 on), on one 18 x 18 signed multiplier:
+  // ox cos, oy sin (d0's two terms), bx |sin|, by |cos| (tx, ty), 2c |cos|, 2c |sin|.
+  localparam int unsigned FirstProduct = SetupCycles - 4;
+  logic signed [17:0] mul_a, mul_b;
+  logic signed [35:0] product_q[6];
+  logic [4:0]         product_slot;
+  assign product_slot = 5'(FirstProduct) - countdown_q;
+  always_comb begin
+    unique case (product_slot)
+      5'd0:    begin mul_a = 18'(ox); mul_b = cs; end
+      5'd1:    begin mul_a = 18'(oy); mul_b = sn; end
+      5'd2:    begin mul_a = 18'(bx); mul_b = $signed({1'b0, asn}); end
+      5'd3:    begin mul_a = 18'(by); mul_b = $signed({1'b0, acs}); end
+      5'd4:    begin mul_a = $signed(18'(c2)); mul_b = $signed({1'b0, acs}); end
+      default: begin mul_a = $signed(18'(c2)); mul_b = $signed({1'b0, asn}); end
+    endcase
+  end
+  for (genvar i = 0; i < 6; i++) begin : gen_product
+    always_ff @(posedge clk_i) begin
+      if (!rst_ni) product_q[i] <= '0;
+      else if (slot_full_q && countdown_q != '0 && product_slot == 5'(i)) product_q[i] <= mul_a * mul_b;
+    end
+  end
+
   assign cs = cos_angle[15] ? -$signed({1'b0, cos_magnitude}) : $signed({1'b0, cos_magnitude});
   assign sn = angle[15] ? -$signed({1'b0, sin_magnitude}) : $signed({1'b0, sin_magnitude});
   assign acs = cos_magnitude;
@@ -268,7 +294,7 @@ module mapping_engine #(
   assign ox    = ic2_x + c_s - x0;
   assign oy    = ic2_y + c_s - y0;
   assign limit = CountBits'(bin_cells * CountBits'(cell_q) + CountBits'(half_cell));
-  assign d0       = $signed(WalkBits'(ox * cs)) + $signed(WalkBits'(oy * sn));
+  assign d0       = $signed(WalkBits'(product_q[0])) + $signed(WalkBits'(product_q[1]));
   assign cell_q17 = $signed(WalkBits'({cell_q, 17'b0}));
   assign next0    = $signed(WalkBits'({CellBits'(cell_q - CellBits'(half_cell)), 17'b0}));
   assign end0     = $signed(WalkBits'({CountBits'(limit) + 20'd1, 17'b0}));
@@ -335,10 +361,10 @@ module mapping_engine #(
         forward_y_q <= sn > 0;
         ix_q        <= CoordBits'(ix0);
         iy_q        <= CoordBits'(iy0);
-        tx_q        <= $signed(WalkBits'(bx * $signed({1'b0, asn})));
-        ty_q        <= $signed(WalkBits'(by * $signed({1'b0, acs})));
-        c2_cos_q    <= $signed(WalkBits'(c2 * acs));
-        c2_sin_q    <= $signed(WalkBits'(c2 * asn));
+        tx_q        <= $signed(WalkBits'(product_q[2]));
+        ty_q        <= $signed(WalkBits'(product_q[3]));
+        c2_cos_q    <= $signed(WalkBits'(product_q[4]));
+        c2_sin_q    <= $signed(WalkBits'(product_q[5]));
         d_q         <= d_first;
         end_q       <= end0;
         if (d_first >= next0) begin
