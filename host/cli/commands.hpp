@@ -24,7 +24,9 @@ void add_simulate_command(CLI::App& app);
 void add_slam_command(CLI::App& app);
 void add_globloc_command(CLI::App& app);
 void add_hw_config_command(CLI::App& app);
-// The SLAM settings as options (--cell, --lambda, --xi, ...), shared by slam and the figures.
+// The grid engine's settings as options (--cell, --lambda, --xi, ...), for the figures' sweeps.
+// `intgrid slam` adds the same options (slam_command.cpp), the five both engines have setting
+// whichever engine runs.
 void add_slam_options(CLI::App& cmd, slam::GridSlamConfig& config);
 // Throws OptionError naming the flag for a SLAM setting the golden check refuses.
 void check_slam_options(const slam::GridSlamConfig& config);

@@ -1,10 +1,9 @@
 // `intgrid slam`: SLAM on a log, by the submap SLAM with loop closure (--engine submaps, the
 // default) or the thesis's event-driven grid SLAM (--engine grid).
-#include <algorithm>
 #include <cstddef>
 #include <cstdio>
-#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -85,10 +84,58 @@ void check_submap_slam_options(const slam::SubmapSlamConfig& c) {
   naming_flags(submap_slam_flags(), [&] { slam::check_submap_slam_config(c); });
 }
 
-void add_slam_options(CLI::App& cmd, slam::GridSlamConfig& c) {
-  cmd.add_option("--cell,--res", c.cell, "map cell and pose-grid step (m, whole millimetres)")
-      ->check(positive())
-      ->capture_default_str();
+namespace {
+
+// The settings both engines have, with one meaning and each engine its own default, under the
+// member paths of GridSlamConfig and SubmapSlamConfig: each set only if given.
+struct SharedSlamSettings {
+  std::optional<double> cell;
+  std::optional<int> headings;
+  struct {
+    std::optional<double> sigma, max_range;
+  } sensor;
+  struct {
+    std::optional<int> empty_divisor;
+  } map;
+};
+
+// The options of those settings, bound to `s`: an engine's config, or SharedSlamSettings.
+template <class Settings>
+std::vector<CLI::Option*> add_shared_slam_options(CLI::App& cmd, Settings& s) {
+  return {
+      cmd.add_option("--cell,--res", s.cell,
+                     "map cell (m, whole millimetres; the grid engine's pose-grid step too)")
+          ->check(positive()),
+      cmd.add_option("--empty-divisor", s.map.empty_divisor,
+                     "a reading's empty evidence is divided by this before it is fused")
+          ->transform(whole_range(1, 127)),
+      cmd.add_option("--headings", s.headings, "heading steps per turn (a power of two)")
+          ->transform(whole_range(8, 65536)),
+      cmd.add_option("--sigma", s.sensor.sigma, "range noise of the beam model (m)")
+          ->check(positive()),
+      cmd.add_option("--max-range", s.sensor.max_range, "readings at or past this are not used (m)")
+          ->check(positive())};
+}
+
+// Each engine's defaults of those settings, in the options' order.
+template <class Config>
+std::vector<std::string> shared_slam_defaults(const Config& c) {
+  return {option_number(c.cell), std::to_string(c.map.empty_divisor), std::to_string(c.headings),
+          option_number(c.sensor.sigma), option_number(c.sensor.max_range)};
+}
+
+// The given ones into the config of the engine that runs.
+template <class Config>
+void apply_shared_slam_settings(const SharedSlamSettings& s, Config& c) {
+  if (s.cell) c.cell = *s.cell;
+  if (s.headings) c.headings = *s.headings;
+  if (s.sensor.sigma) c.sensor.sigma = *s.sensor.sigma;
+  if (s.sensor.max_range) c.sensor.max_range = *s.sensor.max_range;
+  if (s.map.empty_divisor) c.map.empty_divisor = *s.map.empty_divisor;
+}
+
+// The grid engine's own options.
+void add_grid_slam_options(CLI::App& cmd, slam::GridSlamConfig& c) {
   cmd.add_option("--lambda", c.schedule.lambda, "localize every lambda-th scan")
       ->transform(whole_at_least(1))
       ->capture_default_str();
@@ -102,24 +149,11 @@ void add_slam_options(CLI::App& cmd, slam::GridSlamConfig& c) {
                  "localization uses the beams' joint likelihood to the power 1 / tempering")
       ->transform(whole_range(1, 1000))
       ->capture_default_str();
-  cmd.add_option("--empty-divisor", c.map.empty_divisor,
-                 "a reading's empty evidence is divided by this before it is fused")
-      ->transform(whole_range(1, 127))
-      ->capture_default_str();
-  cmd.add_option("--headings", c.headings, "heading bins per turn (a power of two)")
-      ->transform(whole_range(8, 65536))
-      ->capture_default_str();
   cmd.add_option("--window-cells", c.window.cells, "pose-grid cells per side in x and y (odd)")
       ->transform(whole_range(1, 255))
       ->capture_default_str();
   cmd.add_option("--window-headings", c.window.headings, "pose-grid heading bins (odd)")
       ->transform(whole_range(1, 255))
-      ->capture_default_str();
-  cmd.add_option("--sigma", c.sensor.sigma, "range noise of the beam model (m)")
-      ->check(positive())
-      ->capture_default_str();
-  cmd.add_option("--max-range", c.sensor.max_range, "readings at or past this are not used (m)")
-      ->check(positive())
       ->capture_default_str();
   cmd.add_option("--floor", c.beam.likelihood_floor,
                  "likelihood of a reading the map cannot explain")
@@ -151,37 +185,14 @@ void add_slam_options(CLI::App& cmd, slam::GridSlamConfig& c) {
       ->capture_default_str();
 }
 
-namespace {
+}  // namespace
 
-// The settings of the grid engine's options (add_slam_options) that the submaps engine has too,
-// with the same meaning and its own default: the option sets the grid engine's field, which
-// `to_submaps` copies to the submaps engine's when that runs.
-struct SharedSetting {
-  const char* flag;
-  const char* help;  // for both engines
-  std::string submaps_default;
-  std::function<void(SlamJobOptions&)> to_submaps;
-};
-
-std::vector<SharedSetting> shared_settings() {
-  const slam::SubmapSlamConfig s;
-  return {
-      {"--cell", "map cell (m, whole millimetres; the grid engine's pose-grid step too)",
-       option_number(s.cell), [](SlamJobOptions& o) { o.submap_config.cell = o.grid_config.cell; }},
-      {"--headings", "heading steps per turn (a power of two)", std::to_string(s.headings),
-       [](SlamJobOptions& o) { o.submap_config.headings = o.grid_config.headings; }},
-      {"--sigma", "range noise of the beam model (m)", option_number(s.sensor.sigma),
-       [](SlamJobOptions& o) { o.submap_config.sensor.sigma = o.grid_config.sensor.sigma; }},
-      {"--max-range", "readings at or past this are not used (m)",
-       option_number(s.sensor.max_range),
-       [](SlamJobOptions& o) {
-         o.submap_config.sensor.max_range = o.grid_config.sensor.max_range;
-       }},
-      {"--empty-divisor", "a reading's empty evidence is divided by this before it is fused",
-       std::to_string(s.map.empty_divisor), [](SlamJobOptions& o) {
-         o.submap_config.map.empty_divisor = o.grid_config.map.empty_divisor;
-       }}};
+void add_slam_options(CLI::App& cmd, slam::GridSlamConfig& c) {
+  for (CLI::Option* opt : add_shared_slam_options(cmd, c)) opt->capture_default_str();
+  add_grid_slam_options(cmd, c);
 }
+
+namespace {
 
 const char* const kBothGroup = "Both engines (each with its own default)";
 const char* const kGridGroup = "The grid engine (--engine grid)";
@@ -323,31 +334,31 @@ void add_slam_command(CLI::App& app) {
                         "SLAM (thesis chapter 3)")
           ->default_str(engine_name(o->engine));
 
+  auto shared = std::make_shared<SharedSlamSettings>();
+  const std::vector<CLI::Option*> shared_options = add_shared_slam_options(*cmd, *shared);
+  const std::vector<std::string> submaps_defaults = shared_slam_defaults(o->submap_config),
+                                 grid_defaults = shared_slam_defaults(o->grid_config);
+  for (std::size_t i = 0; i < shared_options.size(); ++i)
+    shared_options[i]
+        ->description(shared_options[i]->get_description() + " (default: submaps " +
+                      submaps_defaults[i] + ", grid " + grid_defaults[i] + ")")
+        ->group(kBothGroup);
   const std::size_t before = cmd->get_options().size();
-  add_slam_options(*cmd, o->grid_config);
+  add_grid_slam_options(*cmd, o->grid_config);
   std::vector<CLI::Option*> grid_only = cmd->get_options();
   grid_only.erase(grid_only.begin(), grid_only.begin() + static_cast<std::ptrdiff_t>(before));
-  auto shared = std::make_shared<std::vector<SharedSetting>>(shared_settings());
-  for (const SharedSetting& s : *shared) {
-    CLI::Option* opt = cmd->get_option(s.flag);
-    opt->description(std::string(s.help) + " (default: submaps " + s.submaps_default + ", grid " +
-                     opt->get_default_str() + ")")
-        ->default_str("")
-        ->group(kBothGroup);
-    grid_only.erase(std::find(grid_only.begin(), grid_only.end(), opt));
-  }
   for (CLI::Option* opt : grid_only) opt->group(kGridGroup);
   o->submap_config.threads = 0;  // the command uses every core unless told otherwise
   const std::vector<CLI::Option*> submaps_only = add_submap_options(*cmd, o->submap_config);
 
-  cmd->callback([o, cmd, engine, shared, grid_only, submaps_only] {
+  cmd->callback([o, engine, shared, grid_only, submaps_only] {
     const bool engine_given = engine->count() > 0;
     if (o->engine == SlamEngine::grid) {
       refuse_other_engine(submaps_only, "submaps", *o, engine_given);
+      apply_shared_slam_settings(*shared, o->grid_config);
     } else {
       refuse_other_engine(grid_only, "grid", *o, engine_given);
-      for (const SharedSetting& s : *shared)
-        if (cmd->get_option(s.flag)->count() > 0) s.to_submaps(*o);
+      apply_shared_slam_settings(*shared, o->submap_config);
     }
     const SlamJobResult r = run_slam_job(*o);
     print_json(r.metrics);
