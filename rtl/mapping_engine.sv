@@ -7,11 +7,12 @@
 // Micro-architecture: a one-beat command slot; a restoring divider for a used reading's range bin
 // (19 cycles, overlapped with the walk before it) and a cycle to read the bin's entry, during
 // which one shared multiplier forms the ray's six direction products, one a cycle; one start
-// cycle that sets the ray up (one multiplication left, the bin's length); then one cell a cycle: the cell's tile and
-// tail entries are read at the edge that steps the ray, and the fused index is written at the
-// next edge (the write stage), so the tile is a simple dual-port RAM. A reset clears the tile, a
-// cell a cycle; the load port fills the settings and memories; the read port serves the tile
-// while the engine is idle, its result held by a skid register under back-pressure.
+// cycle that sets the ray up (one multiplication left, the bin's length); then one cell a
+// cycle: the cell's tile and tail entries are read at the edge that steps the ray, and the
+// fused index is written at the next edge (the write stage), so the tile is a simple dual-port
+// RAM. A reset clears the tile, a cell a cycle; the load port fills the settings and memories;
+// the read port serves the tile while the engine is idle, its result held by a skid register
+// under back-pressure.
 module mapping_engine #(
   parameter int unsigned B          = 8,     // index width, 4..16
   parameter int unsigned TILE_BITS  = 8,     // the tile is 2^TILE_BITS cells square, 2..10
@@ -265,7 +266,8 @@ module mapping_engine #(
   for (genvar i = 0; i < 6; i++) begin : gen_product
     always_ff @(posedge clk_i) begin
       if (!rst_ni) product_q[i] <= '0;
-      else if (slot_full_q && countdown_q != '0 && product_slot == 5'(i)) product_q[i] <= mul_a * mul_b;
+      else if (slot_full_q && countdown_q != '0 && product_slot == 5'(i))
+        product_q[i] <= mul_a * mul_b;
     end
   end
 

@@ -25,7 +25,8 @@ module mapping_engine_timing #(
   input  logic ld_bit_i
 );
   localparam int unsigned TileAw = 2 * TILE_BITS;
-  localparam int unsigned InW    = 1 + 26 + 26 + 15 + 15 + 16 + 18;  // pose, cx, cy, px, py, angle, range
+  // pose, cx, cy, px, py, angle, range
+  localparam int unsigned InW    = 1 + 26 + 26 + 15 + 15 + 16 + 18;
   localparam int unsigned LdW    = 3 + 16 + 64;                      // target, address, data
   logic              rst_nq, in_valid_q, rd_valid_q, rd_ready_q, ld_valid_q;
   logic [InW-1:0]    in_q;

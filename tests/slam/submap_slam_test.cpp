@@ -309,7 +309,10 @@ TEST(ScanMatching, RecoversTheTruePoseInInteger) {
       core::make_index_ism_table(core::GaussianBeamModel{0.05, 0.0}, 0.05, codec, 6, 20000, 1));
 }
 
-// The corridor loop of the simulated floor, 700 scans at 361 beams with the default odometry
+// The corridor loop's scans (simulated_loop): what follows a spin at its start.
+constexpr std::size_t kLoopScans = 700;
+
+// The corridor loop of the simulated floor, kLoopScans scans at 361 beams with the default odometry
 // noise (about 1 m off after one lap), after spin_turns turns on the spot at its start at
 // 2 rad/s (0.4 rad a scan), its odometry's turns scaled by turn_scale (record_run).
 SimulatedRun simulated_loop(int spin_turns = 0, double turn_scale = 1.0) {
@@ -317,7 +320,7 @@ SimulatedRun simulated_loop(int spin_turns = 0, double turn_scale = 1.0) {
   floor.cell = 0.05;
   const simulation::Floorplan plan = simulation::make_floorplan(floor, 5);
   simulation::TrajectoryConfig route;
-  route.scans = 700;
+  route.scans = kLoopScans;
   const std::vector<core::Pose2> loop = simulation::follow_route(plan.corridor_loop, true, route);
   const double turn_per_scan = 2.0 * 0.2;
   const int spin = static_cast<int>(spin_turns * 2 * std::numbers::pi / turn_per_scan);
@@ -368,8 +371,11 @@ TEST(SubmapSlam, TracksASimulatedLoopFarBetterThanOdometryInDouble) {
 // (double) against the odometry's 8.4 m (0.042 / 0.043 m without young nodes matched again);
 // without the bias 0.080 / 0.107 m (measured before closures took only what their match fixes and
 // the ISM's sigma went from 5 to 3 cm).
-void holds_a_spin(const SimulatedRun& sim, const char* label, core::Arithmetic arithmetic) {
-  const std::size_t spin = sim.truth.size() - 700;
+// The spin of `sim` held to 3 degrees and the run to 0.15 m ATE, where the odometry's ATE exceeds
+// min_odometry_rmse (the test means something).
+void holds_a_spin(const SimulatedRun& sim, const char* label, double min_odometry_rmse,
+                  core::Arithmetic arithmetic) {
+  const std::size_t spin = sim.truth.size() - kLoopScans;
   const SlamRun run = run_submap_slam(sim.log, SubmapSlamConfig{}, arithmetic);
   double worst_heading = 0.0;  // during the spin, against the truth: both start at the same pose
   for (std::size_t i = 0; i < spin; ++i)
@@ -381,6 +387,7 @@ void holds_a_spin(const SimulatedRun& sim, const char* label, core::Arithmetic a
   const TrajectoryError odometry = absolute_trajectory_error(scan_poses(sim.log), sim.truth);
   std::printf("%s: %.2f degrees off at most during the spin; ATE %.3f m, odometry %.3f m\n", label,
               worst_heading * 180 / std::numbers::pi, slam.rmse, odometry.rmse);
+  EXPECT_GT(odometry.rmse, min_odometry_rmse);
   EXPECT_LT(worst_heading * 180 / std::numbers::pi, 3.0);
   EXPECT_LT(slam.rmse, 0.15);
 }
@@ -391,13 +398,10 @@ const SimulatedRun& spinning_start() {
 }
 
 TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInInteger) {
-  EXPECT_GT(
-      absolute_trajectory_error(scan_poses(spinning_start().log), spinning_start().truth).rmse,
-      3.0);
-  holds_a_spin(spinning_start(), "spinning start", core::Arithmetic::integer);
+  holds_a_spin(spinning_start(), "spinning start", 3.0, core::Arithmetic::integer);
 }
 TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
-  holds_a_spin(spinning_start(), "spinning start", core::Arithmetic::floating);
+  holds_a_spin(spinning_start(), "spinning start", 3.0, core::Arithmetic::floating);
 }
 
 // The spinning start with unbiased odometry that arrives late in its second turn (once the
@@ -406,13 +410,14 @@ TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
 // degrees reported where the scans turned 20, the rest a scan later). The narrow window (+-8
 // degrees) cannot reach a 23-degree slip, the wide one can, and there the prediction it
 // contradicts must not veto the scan's pose. Measured: 0.43 degree off at most during the spin
-// (integer and double); 22.9 degrees when the wide search kept the odometry's prior. In the
+// (integer and double), the odometry's ATE 2.0 m; 22.9 degrees when the wide search kept the
+// odometry's prior. In the
 // first turn, with a submap of a few scans, the narrow match of a slipped scan can still score
 // above `wide_below`, and the wide search is not made: not held yet (docs/results.md).
 const SimulatedRun& spin_with_late_odometry() {
   static const SimulatedRun run = [] {
     SimulatedRun late = simulated_loop(2, 1.0);
-    const std::size_t spin = late.truth.size() - 700;
+    const std::size_t spin = late.truth.size() - kLoopScans;
     for (std::size_t i = spin / 2 + 1; i < spin; i += 3)
       late.log.scans[i].robot = late.log.scans[i - 1].robot;
     return late;
@@ -421,10 +426,10 @@ const SimulatedRun& spin_with_late_odometry() {
 }
 
 TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateInInteger) {
-  holds_a_spin(spin_with_late_odometry(), "spin, odometry late", core::Arithmetic::integer);
+  holds_a_spin(spin_with_late_odometry(), "spin, odometry late", 1.0, core::Arithmetic::integer);
 }
 TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateInDouble) {
-  holds_a_spin(spin_with_late_odometry(), "spin, odometry late", core::Arithmetic::floating);
+  holds_a_spin(spin_with_late_odometry(), "spin, odometry late", 1.0, core::Arithmetic::floating);
 }
 
 // Sets every cell of world whose centre lies inside (x0, x1) x (y0, y1) (m) to value: a drawn
