@@ -291,8 +291,8 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::SubmapSlamConf
   add("--huber", c.graph.huber, "the robust loss's Huber width (sigmas)", positive());
   group = "Submaps engine: threads";
   add("--threads", c.threads,
-      "threads the loop-closure searches and a finished submap's matches run on (0: every core); "
-      "the same result for any count",
+      "threads the loop-closure searches, a finished submap's matches and each scan's match run "
+      "on (0: every core); the same result for any count",
       whole_range(0, 256));
   return added;
 }

@@ -115,7 +115,7 @@ void bind_submap_slam(py::module_& m) {
       .def_readwrite("headings", &SubmapSlamConfig::headings,
                      "heading steps per turn of the match lattice")
       .def_readwrite("threads", &SubmapSlamConfig::threads,
-                     "threads of the back end's searches (0: every core); the same result")
+                     "threads of the searches, both ends (0: every core); the same result")
       .def_readwrite("sensor", &SubmapSlamConfig::sensor, "a RangeSensor")
       .def_readwrite("map", &SubmapSlamConfig::map)
       .def_readwrite("submaps", &SubmapSlamConfig::submaps)

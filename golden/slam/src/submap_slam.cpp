@@ -604,6 +604,7 @@ SubmapSlam::SubmapSlam(const SubmapSlamConfig& config, core::Arithmetic arithmet
   s.filter_mm = millimetres(config.filter.distance);
   s.filter_units = angle_units(radians(config.filter.degrees));
   s.filter_ms = core::milliseconds(config.filter.seconds);
+  s.threads = core::threads_or_every_core(config.threads);
   if (arithmetic == core::Arithmetic::integer)
     engine_ = std::make_unique<EngineOf<std::int8_t>>(config, codec, std::move(s));
   else

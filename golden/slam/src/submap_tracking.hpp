@@ -32,6 +32,7 @@ struct TrackerSetup {
   std::int64_t filter_mm = 100;
   std::int64_t filter_units = 364;
   std::int64_t filter_ms = 5000;
+  int threads = 1;  // the matches' headings are searched on this many (SubmapSlamConfig::threads)
 };
 
 template <class Cell>
@@ -133,18 +134,21 @@ TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, const SlamSensor&
       wide.prior_theta_units =
           std::max(narrow.prior_theta_units, std::int64_t{wide.steps} * wide.step_units);
     Match<Cell> best = match_exhaustive(target, rays, points_, predicted, narrow, setup_.max_index,
-                                        MatchScore<Cell>{});
+                                        MatchScore<Cell>{}, setup_.threads);
     step.score_permille = static_cast<std::int64_t>(best.evidence * 1000 / MatchScore<Cell>(full));
     recent_evidence_permille_.push_back(step.score_permille);
     if (recent_evidence_permille_.size() > kRecentMatches) recent_evidence_permille_.pop_front();
     if (step.score_permille < setup_.wide_below_permille) {
       step.wide = true;
-      const Match<Cell> wider = match_exhaustive(target, rays, points_, predicted, wide,
-                                                 setup_.max_index, MatchScore<Cell>{});
+      const Match<Cell> wider =
+          match_exhaustive(target, rays, points_, predicted, wide, setup_.max_index,
+                           MatchScore<Cell>{}, setup_.threads);
       if (wider.score > best.score) best = wider;
     }
     const SearchWindow& window = step.wide ? wide : narrow;
-    pose_ = refine_match(target, rays, points_, predicted, window, setup_.max_index, best).pose;
+    pose_ = refine_match(target, rays, points_, predicted, window, setup_.max_index, best,
+                         setup_.threads)
+                .pose;
     step.matched = true;
   }
   step.pose = pose_;

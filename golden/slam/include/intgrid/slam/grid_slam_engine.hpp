@@ -129,6 +129,7 @@ struct SlamPose {
   std::int64_t x_mm = 0;
   std::int64_t y_mm = 0;
   std::int64_t theta = 0;
+  bool operator==(const SlamPose&) const = default;
 };
 
 // Everything the per-scan path needs that takes floating point to build.

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "intgrid/core/parallel.hpp"
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/local_grid.hpp"
@@ -147,16 +148,17 @@ MatchScore<Cell> interpolated_evidence(const LocalGrid<Cell>& grid, const std::v
 }  // namespace matching_detail
 
 // The largest score of the window, and its pose (the first in k, j, i order among equals).
-// found says whether it reached min_score.
+// found says whether it reached min_score. The headings are cut into up to `threads` runs of
+// consecutive k searched on threads; each run's best is taken in k order with the same strict
+// comparison, so the result is the same for any count.
 template <class Cell>
 Match<Cell> match_exhaustive(const LocalGrid<Cell>& grid, const core::IntegerRays& rays,
                              const ScanPoints& points, const SlamPose& guess,
-                             const SearchWindow& window, int max_index,
-                             MatchScore<Cell> min_score) {
+                             const SearchWindow& window, int max_index, MatchScore<Cell> min_score,
+                             int threads = 1) {
   using S = MatchScore<Cell>;
   const int n = 2 * window.cells + 1;
   const S full = S(static_cast<std::int64_t>(points.size()) * max_index);
-  std::vector<int> cx, cy;
   // Per-pose sums of whole indices fit 32 bits (100000 beams of 127 at most). S_eps cells are
   // first summed in 16 bits, kHitsPer16Bits hits at a time, over rows padded to whole blocks of
   // 16 cells: fixed-width adds of 16 lanes that the compiler vectorizes, where 13 cells of 32
@@ -169,67 +171,86 @@ Match<Cell> match_exhaustive(const LocalGrid<Cell>& grid, const core::IntegerRay
   const auto cells_of = [&](int rows) {
     return static_cast<std::size_t>(rows) * static_cast<std::size_t>(stride);
   };
-  std::vector<Sum> sums(cells_of(n));
-  std::vector<std::int16_t> partial(kIndices ? cells_of(n) : 0);
-  int partial_hits = 0;
-  const auto flush_partial = [&] {
-    for (std::size_t q = 0; q < partial.size(); ++q) sums[q] += partial[q];
-    std::fill(partial.begin(), partial.end(), std::int16_t{0});
-    partial_hits = 0;
-  };
-  Match<Cell> best;
-  bool any = false;
   const std::int64_t c = rays.cell_mm();
-  for (int k = -window.steps; k <= window.steps; ++k) {
-    const std::int64_t da = std::int64_t{k} * window.step_units;
-    const auto theta = static_cast<std::int32_t>(guess.theta + da);
-    matching_detail::hit_cells(rays, points, guess.x_mm, guess.y_mm, theta, cx, cy);
-    std::fill(sums.begin(), sums.end(), Sum{});
-    for (std::size_t p = 0; p < points.size(); ++p) {
-      const int x0 = cx[p] - window.cells, y0 = cy[p] - window.cells;
-      if (x0 >= grid.x0() && y0 >= grid.y0() && x0 + stride <= grid.x0() + grid.width() &&
-          y0 + n <= grid.y0() + grid.height()) {
-        // The whole (padded) window inside the grid: rows read straight.
-        const Cell* cells =
-            grid.cells().data() +
-            (static_cast<std::ptrdiff_t>(y0 - grid.y0()) * grid.width() + (x0 - grid.x0()));
+  struct Best {
+    Match<Cell> match;
+    bool any = false;
+  };
+  // The best of headings k_first..k_last, in k, j, i order.
+  const auto search = [&](int k_first, int k_last) {
+    std::vector<int> cx, cy;
+    std::vector<Sum> sums(cells_of(n));
+    std::vector<std::int16_t> partial(kIndices ? cells_of(n) : 0);
+    int partial_hits = 0;
+    const auto flush_partial = [&] {
+      for (std::size_t q = 0; q < partial.size(); ++q) sums[q] += partial[q];
+      std::fill(partial.begin(), partial.end(), std::int16_t{0});
+      partial_hits = 0;
+    };
+    Best best;
+    for (int k = k_first; k <= k_last; ++k) {
+      const std::int64_t da = std::int64_t{k} * window.step_units;
+      const auto theta = static_cast<std::int32_t>(guess.theta + da);
+      matching_detail::hit_cells(rays, points, guess.x_mm, guess.y_mm, theta, cx, cy);
+      std::fill(sums.begin(), sums.end(), Sum{});
+      for (std::size_t p = 0; p < points.size(); ++p) {
+        const int x0 = cx[p] - window.cells, y0 = cy[p] - window.cells;
+        if (x0 >= grid.x0() && y0 >= grid.y0() && x0 + stride <= grid.x0() + grid.width() &&
+            y0 + n <= grid.y0() + grid.height()) {
+          // The whole (padded) window inside the grid: rows read straight.
+          const Cell* cells =
+              grid.cells().data() +
+              (static_cast<std::ptrdiff_t>(y0 - grid.y0()) * grid.width() + (x0 - grid.x0()));
+          for (int j = 0; j < n; ++j) {
+            const Cell* source = cells + static_cast<std::ptrdiff_t>(j) * grid.width();
+            if constexpr (kIndices) {
+              std::int16_t* row = &partial[cells_of(j)];
+              for (int b = 0; b < stride; b += kBlock)
+                for (int i = 0; i < kBlock; ++i) row[b + i] += source[b + i];
+            } else {
+              Sum* row = &sums[cells_of(j)];
+              for (int i = 0; i < n; ++i) row[i] += score_value(source[i]);
+            }
+          }
+          if (kIndices && ++partial_hits == kHitsPer16Bits) flush_partial();
+          continue;
+        }
         for (int j = 0; j < n; ++j) {
-          const Cell* source = cells + static_cast<std::ptrdiff_t>(j) * grid.width();
-          if constexpr (kIndices) {
-            std::int16_t* row = &partial[cells_of(j)];
-            for (int b = 0; b < stride; b += kBlock)
-              for (int i = 0; i < kBlock; ++i) row[b + i] += source[b + i];
-          } else {
-            Sum* row = &sums[cells_of(j)];
-            for (int i = 0; i < n; ++i) row[i] += score_value(source[i]);
+          Sum* row = &sums[cells_of(j)];
+          for (int i = 0; i < n; ++i) row[i] += score_value(grid.at(x0 + i, y0 + j));
+        }
+      }
+      if (kIndices) flush_partial();
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const S evidence = S(sums[cells_of(j) + static_cast<std::size_t>(i)]);
+          const S score =
+              evidence - matching_detail::prior_cost<Cell>(window, full, (i - window.cells) * c,
+                                                           (j - window.cells) * c, da);
+          if (!best.any || score > best.match.score) {
+            best.any = true;
+            best.match.score = score;
+            best.match.evidence = evidence;
+            best.match.pose = {guess.x_mm + (i - window.cells) * c,
+                               guess.y_mm + (j - window.cells) * c, guess.theta + da};
           }
         }
-        if (kIndices && ++partial_hits == kHitsPer16Bits) flush_partial();
-        continue;
-      }
-      for (int j = 0; j < n; ++j) {
-        Sum* row = &sums[cells_of(j)];
-        for (int i = 0; i < n; ++i) row[i] += score_value(grid.at(x0 + i, y0 + j));
-      }
     }
-    if (kIndices) flush_partial();
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const S evidence = S(sums[cells_of(j) + static_cast<std::size_t>(i)]);
-        const S score =
-            evidence - matching_detail::prior_cost<Cell>(window, full, (i - window.cells) * c,
-                                                         (j - window.cells) * c, da);
-        if (!any || score > best.score) {
-          any = true;
-          best.score = score;
-          best.evidence = evidence;
-          best.pose = {guess.x_mm + (i - window.cells) * c, guess.y_mm + (j - window.cells) * c,
-                       guess.theta + da};
-        }
-      }
-  }
-  best.found = any && best.score >= min_score;
-  return best;
+    return best;
+  };
+  const int headings = 2 * window.steps + 1;
+  const int runs = std::clamp(threads, 1, headings);
+  std::vector<Best> bests(static_cast<std::size_t>(runs));
+  core::run_parts(static_cast<std::size_t>(runs), runs, [&](std::size_t r) {
+    const int part = static_cast<int>(r);
+    bests[r] = search(-window.steps + headings * part / runs,
+                      -window.steps + headings * (part + 1) / runs - 1);
+  });
+  Best best;
+  for (const Best& b : bests)
+    if (b.any && (!best.any || b.match.score > best.match.score)) best = b;
+  best.match.found = best.any && best.match.score >= min_score;
+  return best.match;
 }
 
 // Max-pooled copies of a grid: level 0 is the grid itself; level d >= 1 holds, for each cell
@@ -418,33 +439,42 @@ Match<Cell> match_branch_and_bound(const MaxPyramid<Cell>& pyramid, const core::
 // The best of the poses a quarter cell and half a heading step apart around `lattice` (within
 // one cell and one step), scored by bilinear interpolation (in 1/65536 of an index) less the
 // prior around `guess`. (A second pass at half those steps made the ACES run worse, 0.33 m
-// against 0.20 m: it fits the interpolation's ripple, not the walls.)
+// against 0.20 m: it fits the interpolation's ripple, not the walls.) Its five headings are
+// searched on up to `threads` threads and their bests taken in order: the same for any count.
 template <class Cell>
 Match<Cell> refine_match(const LocalGrid<Cell>& grid, const core::IntegerRays& rays,
                          const ScanPoints& points, const SlamPose& guess,
-                         const SearchWindow& window, int max_index, const Match<Cell>& lattice) {
+                         const SearchWindow& window, int max_index, const Match<Cell>& lattice,
+                         int threads = 1) {
   using S = MatchScore<Cell>;
   const S full = S(static_cast<std::int64_t>(points.size()) * max_index) * S(65536);
   const std::int64_t c = rays.cell_mm();
   const auto offset = [c](int k) { return k * c / 4; };  // of pose k = -4..4 from the lattice's
-  Match<Cell> best = lattice;
-  bool any = false;
-  std::vector<int> qx, qy;
-  // The hits' positions at each of the nine offsets along x and along y, computed once a heading
-  // (a division each) rather than once a pose.
-  constexpr int kOffsets = 9;
-  const std::size_t n = points.size();
-  std::vector<std::int64_t> hx(kOffsets * n), hy(kOffsets * n);
-  const auto at_offset = [n](std::vector<std::int64_t>& h, int k) {
-    return std::span<std::int64_t>(h).subspan(static_cast<std::size_t>(k + 4) * n, n);
+  constexpr int kHeadings = 5;                           // m = -2..2 half steps
+  struct Best {
+    S score{};
+    SlamPose pose;
   };
-  for (int m = -2; m <= 2; ++m) {
+  std::vector<Best> bests(kHeadings);
+  const std::size_t n = points.size();
+  core::run_parts(kHeadings, threads, [&](std::size_t h) {
+    const int m = static_cast<int>(h) - 2;
+    std::vector<int> qx, qy;
+    // The hits' positions at each of the nine offsets along x and along y, computed once a
+    // heading (a division each) rather than once a pose.
+    constexpr int kOffsets = 9;
+    std::vector<std::int64_t> hx(kOffsets * n), hy(kOffsets * n);
+    const auto at_offset = [n](std::vector<std::int64_t>& v, int k) {
+      return std::span<std::int64_t>(v).subspan(static_cast<std::size_t>(k + 4) * n, n);
+    };
     const std::int64_t theta = lattice.pose.theta + m * window.step_units / 2;
     matching_detail::turned_hits(rays, points, theta, qx, qy);
     for (int k = -4; k <= 4; ++k) {
       matching_detail::hit_positions_q8(qx, lattice.pose.x_mm + offset(k), c, at_offset(hx, k));
       matching_detail::hit_positions_q8(qy, lattice.pose.y_mm + offset(k), c, at_offset(hy, k));
     }
+    Best& best = bests[h];
+    bool any = false;
     for (int v = -4; v <= 4; ++v)
       for (int u = -4; u <= 4; ++u) {
         const std::int64_t x = lattice.pose.x_mm + offset(u), y = lattice.pose.y_mm + offset(v);
@@ -455,11 +485,15 @@ Match<Cell> refine_match(const LocalGrid<Cell>& grid, const core::IntegerRays& r
                                                  theta - guess.theta);
         if (!any || sum > best.score) {
           any = true;
-          best.score = sum;
-          best.pose = {x, y, theta};
+          best = {sum, {x, y, theta}};
         }
       }
-  }
+  });
+  std::size_t kept = 0;
+  for (std::size_t h = 1; h < bests.size(); ++h)
+    if (bests[h].score > bests[kept].score) kept = h;
+  Match<Cell> best = lattice;
+  best.pose = bests[kept].pose;
   best.score = lattice.score;  // callers compare lattice scores with their thresholds
   return best;
 }

@@ -32,8 +32,9 @@ namespace intgrid::slam {
 struct SubmapSlamConfig {
   double cell = 0.05;   // submap cell (m), a whole number of millimetres
   int headings = 1024;  // heading steps per turn of the match lattice: a power of two, 64..16384
-  // Threads that the back end's searches run on (loop closures, a finished submap's nodes): 0
-  // for every core, at most 256. The result is the same, bit for bit, for any count.
+  // Threads that the back end's searches (loop closures, a finished submap's nodes) and the
+  // front end's match of each scan (its headings) run on: 0 for every core, at most 256. The
+  // result is the same, bit for bit, for any count.
   int threads = 1;
 
   // The range sensor. sigma: the exact ISM raises the cells just past a reading (the first
