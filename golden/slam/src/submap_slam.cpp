@@ -268,7 +268,8 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
   void insert(const QuantizedScan& scan, std::shared_ptr<const SlamSensor> sensor,
               double t) override {
     ++stats.scans;
-    const TrackStep step = tracker.track(scan, *sensor, core::milliseconds(t));
+    TrackStep step = tracker.localize(scan, *sensor);
+    tracker.map(step, scan, *sensor, core::milliseconds(t));
     stats.wide_searches += step.wide;
     stats.unmatched_scans += !step.matched;
     for (Submap<Cell>& done : tracker.take_finished()) finish_submap(std::move(done));

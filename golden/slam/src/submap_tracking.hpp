@@ -23,7 +23,7 @@ struct TrackerSetup {
   std::vector<std::int32_t> sin_q16;
   int max_index = 127;
   SearchWindow narrow;                        // its prior at no motion
-  SearchWindow wide;                          // its prior is set per scan (LocalTracker::track)
+  SearchWindow wide;                          // its prior is set per scan (localize)
   std::int64_t prior_xy_per_mm_q16 = 0;       // prior (mm) per mm of odometry translation, Q16
   std::int64_t prior_theta_per_unit_q16 = 0;  // prior (units) per unit of rotation, Q16
   std::int64_t wide_below_permille = 300;
@@ -62,8 +62,12 @@ class LocalTracker {
   core::IntegerRays rays() const { return {setup_.sin_q16, setup_.cell_mm}; }
   const ScanPoints& points() const { return points_; }
 
-  // The scan taken at t_ms by a sensor of geometry `sensor` (each scan may state its own).
-  TrackStep track(const QuantizedScan& scan, const SlamSensor& sensor, std::int64_t t_ms);
+  // The scan taken at t_ms by a sensor of geometry `sensor` (each scan may state its own), in
+  // the thesis's events: motion and localization (localize: the odometry's prediction matched
+  // against the older active submap), then mapping (map: a node, if the pose moved far enough,
+  // fused into the active submaps).
+  TrackStep localize(const QuantizedScan& scan, const SlamSensor& sensor);
+  void map(TrackStep& step, const QuantizedScan& scan, const SlamSensor& sensor, std::int64_t t_ms);
 
   // Submaps that took all their scans, in order, handed over once.
   std::vector<Submap<Cell>> take_finished() { return std::exchange(finished_, {}); }
@@ -96,8 +100,7 @@ class LocalTracker {
 };
 
 template <class Cell>
-TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, const SlamSensor& sensor,
-                                    std::int64_t t_ms) {
+TrackStep LocalTracker<Cell>::localize(const QuantizedScan& scan, const SlamSensor& sensor) {
   const core::IntegerRays rays = this->rays();
   TrackStep step;
   // Motion: the odometry increment, turned into the local frame.
@@ -152,14 +155,20 @@ TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, const SlamSensor&
     step.matched = true;
   }
   step.pose = pose_;
+  return step;
+}
 
-  // Mapping: a node once the pose moved far enough from the last one.
+template <class Cell>
+void LocalTracker<Cell>::map(TrackStep& step, const QuantizedScan& scan, const SlamSensor& sensor,
+                             std::int64_t t_ms) {
+  // A node once the pose moved far enough from the last one.
+  const core::IntegerRays rays = this->rays();
   const std::int64_t dx = pose_.x_mm - node_pose_.x_mm, dy = pose_.y_mm - node_pose_.y_mm;
   const std::int64_t dt = pose_.theta - node_pose_.theta;
   const bool moved = !started_ || dx * dx + dy * dy > setup_.filter_mm * setup_.filter_mm ||
                      dt > setup_.filter_units || -dt > setup_.filter_units ||
                      t_ms - node_ms_ > setup_.filter_ms;
-  if (!moved || points_.size() == 0) return step;
+  if (!moved || points_.size() == 0) return;
   started_ = true;
   node_pose_ = pose_;
   node_ms_ = t_ms;
@@ -181,7 +190,6 @@ TrackStep LocalTracker<Cell>::track(const QuantizedScan& scan, const SlamSensor&
     finished_.push_back(std::move(active_.front()));
     active_.pop_front();
   }
-  return step;
 }
 
 }  // namespace intgrid::slam
