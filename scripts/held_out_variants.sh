@@ -4,7 +4,11 @@
 # records (odometry only inside FLASER, as other logs of the benchmark carry it), and resampled
 # to 360 beams (neighbouring readings within 5% of each other averaged between them, a jump
 # written as no return) and to 90 beams (every other reading).
-#   held_out_variants.sh [BENCHMARK_DIR] [OUT_DIR]
+#   held_out_variants.sh [BENCHMARK_DIR] [OUT_DIR] [sparse]
+# With `sparse`, the 90-beam set instead: each log at every other reading from the first and from
+# the second (the latter a sensor turned by one degree), started 0, 100, 200, 300, 400 and 600 s
+# in; twelve runs a log. A run at a quarter of the hits is sensitive to small changes anywhere
+# before it, so one 90-beam run says little about a change; the set's count of broken runs does.
 # Integer, one thread (the x real time column is one core's), every option at its default.
 # BENCHMARK_DIR as in benchmark_slam.sh (default ../shared/data/benchmark beside the checkout);
 # the variant logs and the runs go to OUT_DIR (default build/held_out_variants). Prints a
@@ -14,16 +18,21 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bench="${1:-$root/../shared/data/benchmark}"
 out="${2:-$root/build/held_out_variants}"
+set_name="${3:-held-out}"
+case "$set_name" in held-out | sparse) ;; *) echo "held_out_variants: unknown set '$set_name' (held-out or sparse)" >&2; exit 2 ;; esac
 bin="$root/build/default/bin/intgrid"
 [ -x "$bin" ] || { cmake --preset default -S "$root" >/dev/null && cmake --build "$root/build/default" -j"$(nproc)" --target intgrid >/dev/null; }
 mkdir -p "$out"
 
-# variant SOURCE.clf DEST.clf KIND [ARG]: KIND start (ARG seconds after the first laser record),
-# no-odom, beams-up, beams-down.
+# variant SOURCE.clf DEST.clf KIND [START] [FIRST]: the records from START seconds after the first
+# laser record on (default 0); KIND start (no other change), no-odom, beams-up, beams-down (every
+# other reading from reading FIRST, 0 or 1).
 variant() {
   python3 - "$@" <<'PY'
 import sys
 src, dst, kind = sys.argv[1], sys.argv[2], sys.argv[3]
+start = float(sys.argv[4]) if len(sys.argv) > 4 else 0.0
+first_reading = int(sys.argv[5]) if len(sys.argv) > 5 else 0
 lines = open(src).read().splitlines()
 stamp = lambda l: float(l.split()[-3])  # ipc_timestamp
 lasers = [l for l in lines if l.startswith("FLASER")]
@@ -34,7 +43,7 @@ def resampled(line):
     n = int(f[1])
     r, rest = list(map(float, f[2:2 + n])), f[2 + n:]
     if kind == "beams-down":
-        out = r[::2]
+        out = r[first_reading::2]
     else:  # beams-up: 2n beams over the same 180 degrees
         out = []
         for i in range(n):
@@ -45,7 +54,7 @@ def resampled(line):
 with open(dst, "w") as g:
     for l in lines:
         key = l.split(" ", 1)[0]
-        if kind == "start" and key in ("FLASER", "ODOM") and stamp(l) < first + float(sys.argv[4]):
+        if start > 0 and key in ("FLASER", "ODOM") and stamp(l) < first + start:
             continue
         if kind == "no-odom" and key == "ODOM":
             continue
@@ -58,9 +67,16 @@ PY
 runs=()
 for log in intel aces; do
   [ -f "$bench/$log.clf" ] || { echo "held_out_variants: $bench/$log.clf absent, skipping $log" >&2; continue; }
-  starts=(100 400 800)
-  [ "$log" = intel ] && starts+=(1600)
-  for kind in default no-odom beams-up beams-down "${starts[@]/#/start-}"; do
+  kinds=()
+  if [ "$set_name" = sparse ]; then
+    for reading in even odd; do
+      for start in 0 100 200 300 400 600; do kinds+=("beams-down-$reading-$start"); done
+    done
+  else
+    kinds=(default no-odom beams-up beams-down start-100 start-400 start-800)
+    [ "$log" = intel ] && kinds+=(start-1600)
+  fi
+  for kind in "${kinds[@]}"; do
     name="$log-$kind"
     if [ "$kind" = default ]; then
       clf="$bench/$log.clf"
@@ -68,6 +84,8 @@ for log in intel aces; do
       clf="$out/$name.clf"
       case "$kind" in
         start-*) variant "$bench/$log.clf" "$clf" start "${kind#start-}" ;;
+        beams-down-even-*) variant "$bench/$log.clf" "$clf" beams-down "${kind##*-}" 0 ;;
+        beams-down-odd-*) variant "$bench/$log.clf" "$clf" beams-down "${kind##*-}" 1 ;;
         *) variant "$bench/$log.clf" "$clf" "$kind" ;;
       esac
     fi

@@ -89,6 +89,18 @@ class LocalTracker {
   // then hold the pose to the odometry twice as hard.
   static constexpr std::size_t kRecentMatches = 31;
   std::deque<std::int64_t> recent_evidence_permille_;
+  // Whether `pose`, found in `window` around `predicted`, lies on the window's outermost
+  // translations or headings.
+  bool on_window_edge(const SlamPose& pose, const SlamPose& predicted,
+                      const SearchWindow& window) const {
+    const std::int64_t reach_mm = std::int64_t{window.cells} * setup_.cell_mm;
+    const std::int64_t reach_units = std::int64_t{window.steps} * window.step_units;
+    const auto at = [](std::int64_t offset, std::int64_t reach) {
+      return reach > 0 && (offset == reach || offset == -reach);
+    };
+    return at(pose.x_mm - predicted.x_mm, reach_mm) || at(pose.y_mm - predicted.y_mm, reach_mm) ||
+           at(pose.theta - predicted.theta, reach_units);
+  }
   // Their median, clamped to [1, 1000]; 1000 before any match.
   std::int64_t typical_evidence_permille() const {
     if (recent_evidence_permille_.empty()) return 1000;
@@ -141,7 +153,15 @@ TrackStep LocalTracker<Cell>::localize(const QuantizedScan& scan, const SlamSens
     step.score_permille = static_cast<std::int64_t>(best.evidence * 1000 / MatchScore<Cell>(full));
     recent_evidence_permille_.push_back(step.score_permille);
     if (recent_evidence_permille_.size() > kRecentMatches) recent_evidence_permille_.pop_front();
-    if (step.score_permille < setup_.wide_below_permille) {
+    // While the first submap is still taking its scans, its evidence is thin everywhere and a
+    // match whose prediction is off by more than the narrow window can still score above
+    // wide_below (a spin whose odometry arrives late, in its first turn). There the sign is that
+    // the narrow match's best pose lies on the window's edge: the maximum may lie beyond it. Not
+    // on a complete submap: at 90 beams on ACES the wide window then took look-alikes
+    // (docs/results.md).
+    const bool target_incomplete = active_.front().insertions < setup_.submap_scans;
+    if (step.score_permille < setup_.wide_below_permille ||
+        (target_incomplete && on_window_edge(best.pose, predicted, narrow))) {
       step.wide = true;
       const Match<Cell> wider =
           match_exhaustive(target, rays, points_, predicted, wide, setup_.max_index,
