@@ -19,6 +19,7 @@
 #include "intgrid/core/units.hpp"
 #include "intgrid/optimization/pose_graph.hpp"
 #include "intgrid/slam/grid_slam.hpp"
+#include "submap_setup.hpp"
 #include "submap_tracking.hpp"
 
 namespace intgrid::slam {
@@ -29,65 +30,8 @@ using core::millimetres;
 using core::radians;
 using core::require_field;
 
-core::Pose2 to_pose2(const SlamPose& p) {
-  return {static_cast<double>(p.x_mm) * 1e-3, static_cast<double>(p.y_mm) * 1e-3,
-          static_cast<double>(p.theta) * core::kRadiansPerAngleUnit};
-}
-SlamPose to_slam_pose(const core::Pose2& p) {
-  return {millimetres(p.x), millimetres(p.y), angle_units(p.theta)};
-}
 core::Pose2 inverse(const core::Pose2& p) {
   return core::relative(p, {});
-}
-
-SearchWindow search_window(double window_m, double degrees, double prior_m, double prior_degrees,
-                           std::int32_t cell_mm, std::int32_t step_units) {
-  SearchWindow w;
-  w.cells = static_cast<int>(std::ceil(window_m * 1000.0 / cell_mm - 1e-9));
-  w.step_units = step_units;
-  w.steps = static_cast<int>(
-      std::ceil(static_cast<double>(angle_units(radians(degrees))) / step_units - 1e-9));
-  w.prior_xy_mm = prior_m > 0.0 ? millimetres(prior_m) : 0;
-  w.prior_theta_units = prior_degrees > 0.0 ? angle_units(radians(prior_degrees)) : 0;
-  return w;
-}
-
-core::SepsCodec make_codec(const SubmapSlamConfig& c) {
-  return core::SepsCodec::for_levels(c.map.seps_bits, core::narrow_pmax(c.cell, c.sensor.sigma),
-                                     c.map.seps_levels);
-}
-
-std::int32_t ism_step_mm(const SubmapSlamConfig& c) {
-  return std::max<std::int32_t>(1, static_cast<std::int32_t>(millimetres(c.cell)) / 8);
-}
-
-template <class Cell>
-core::IsmTable<Cell> make_table(const SubmapSlamConfig& c, const core::SepsCodec& codec);
-
-template <>
-core::IsmTable<std::int8_t> make_table(const SubmapSlamConfig& c, const core::SepsCodec& codec) {
-  return core::make_index_ism_table(
-      core::GaussianBeamModel{c.sensor.sigma, 0.0}, c.cell, codec, ism_step_mm(c),
-      static_cast<std::int32_t>(millimetres(c.sensor.max_range)), c.map.empty_divisor);
-}
-
-// The exact ISM's log-odds in S_eps steps, bounded as the index table's are by the most one
-// reading may claim (p_levels = Pmax, the narrow ISM's bound: the exact ISM's empty cells reach
-// probabilities near 0, which one reading must not carry), empty values divided likewise.
-template <>
-core::IsmTable<LogOdds> make_table(const SubmapSlamConfig& c, const core::SepsCodec& codec) {
-  const core::IsmTable<double> p = core::make_probability_ism_table(
-      core::GaussianBeamModel{c.sensor.sigma, 0.0}, c.cell, ism_step_mm(c),
-      static_cast<std::int32_t>(millimetres(c.sensor.max_range)));
-  const double bound = c.map.seps_levels;
-  std::vector<LogOdds> values;
-  values.reserve(p.values.size());
-  for (const double v : p.values) {
-    double steps = std::clamp(core::logit(v) / codec.lambda(), -bound, bound);
-    if (steps < 0.0) steps /= c.map.empty_divisor;
-    values.push_back({steps});
-  }
-  return core::make_ism_table(p.z_step_mm, p.begin, std::move(values));
 }
 
 }  // namespace
@@ -586,26 +530,8 @@ SubmapSlam::SubmapSlam(const SubmapSlamConfig& config, core::Arithmetic arithmet
     : first_t_(first.t), frame_(first.robot), previous_robot_(first.robot) {
   check_submap_slam_config(config);
   sensor_for(first, scan_label(1, first.t));
-  TrackerSetup s;
-  s.cell_mm = static_cast<std::int32_t>(millimetres(config.cell));
-  s.max_range_mm = static_cast<std::int32_t>(millimetres(config.sensor.max_range));
-  s.sin_q16 = core::make_sine_table_q16();
   const core::SepsCodec codec = make_codec(config);
-  s.max_index = codec.max_index();
-  const std::int32_t step = core::kAngleUnitsPerTurn / config.headings;
-  const auto& t = config.tracking;
-  s.narrow =
-      search_window(t.window, t.window_degrees, t.prior_xy, t.prior_degrees, s.cell_mm, step);
-  s.wide = search_window(t.wide_window, t.wide_degrees, 0.0, 0.0, s.cell_mm, step);
-  s.prior_xy_per_mm_q16 = std::llround(t.prior_xy_per_m * 65536.0);
-  s.prior_theta_per_unit_q16 = std::llround(t.prior_degrees_per_degree * 65536.0);
-  s.wide_below_permille = std::llround(t.wide_below * 1000.0);
-  s.min_hits = t.min_hits;
-  s.submap_scans = config.submaps.scans;
-  s.filter_mm = millimetres(config.filter.distance);
-  s.filter_units = angle_units(radians(config.filter.degrees));
-  s.filter_ms = core::milliseconds(config.filter.seconds);
-  s.threads = core::threads_or_every_core(config.threads);
+  TrackerSetup s = make_tracker_setup(config, codec);
   if (arithmetic == core::Arithmetic::integer)
     engine_ = std::make_unique<EngineOf<std::int8_t>>(config, codec, std::move(s));
   else
@@ -638,19 +564,7 @@ std::shared_ptr<const SlamSensor> SubmapSlam::sensor_for(const core::Scan& scan,
       std::rotate(sensors_.begin(), it, it + 1);
       return sensors_.front().second;
     }
-  const double mount = std::hypot(scan.sensor_mount.x, scan.sensor_mount.y);
-  if (!std::isfinite(mount) || mount > 100.0 || !std::isfinite(scan.sensor_mount.theta))
-    core::fail<std::invalid_argument>(label +
-                                      ": the sensor is mounted more than 100 m from the robot");
-  if (scan.ranges.empty() || scan.ranges.size() > 100000)
-    core::fail<std::invalid_argument>(label + " has " + std::to_string(scan.ranges.size()) +
-                                      " ranges; SLAM takes 1 to 100000");
-  auto sensor = std::make_shared<SlamSensor>();
-  for (std::size_t i = 0; i < scan.ranges.size(); ++i)
-    sensor->bearing.push_back(static_cast<std::int32_t>(angle_units(scan.bearing(i))));
-  sensor->mount_x_mm = static_cast<std::int32_t>(millimetres(scan.sensor_mount.x));
-  sensor->mount_y_mm = static_cast<std::int32_t>(millimetres(scan.sensor_mount.y));
-  sensor->mount_theta = static_cast<std::int32_t>(angle_units(scan.sensor_mount.theta));
+  std::shared_ptr<SlamSensor> sensor = make_slam_sensor(scan, label);
   core::Scan key = scan;
   key.ranges.assign(scan.ranges.size(), 0.0);
   sensors_.insert(sensors_.begin(), {std::move(key), std::move(sensor)});

@@ -69,6 +69,14 @@ class LocalTracker {
   TrackStep localize(const QuantizedScan& scan, const SlamSensor& sensor);
   void map(TrackStep& step, const QuantizedScan& scan, const SlamSensor& sensor, std::int64_t t_ms);
 
+  // Localization alone in a map given whole (MapLocalizer): `map` becomes the one active submap,
+  // taken as complete, and `pose` the pose in its frame; map() is then not to be called.
+  void localize_in(LocalGrid<Cell> map, const SlamPose& pose) {
+    active_.clear();
+    active_.push_back({next_id_++, std::move(map), {}, setup_.submap_scans});
+    pose_ = pose;
+  }
+
   // Submaps that took all their scans, in order, handed over once.
   std::vector<Submap<Cell>> take_finished() { return std::exchange(finished_, {}); }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "intgrid/core/ray_insertion.hpp"
@@ -42,6 +43,15 @@ template <class Cell>
 class LocalGrid {
  public:
   explicit LocalGrid(std::int32_t cell_mm) : cell_mm_(cell_mm) {}
+  // A grid that holds `cells` (row by row, width x height of them) as [x0, x0 + width) x
+  // [y0, y0 + height): a map given whole (MapLocalizer).
+  LocalGrid(std::int32_t cell_mm, int x0, int y0, int width, int height, std::vector<Cell> cells)
+      : cell_mm_(cell_mm),
+        x0_(x0),
+        y0_(y0),
+        width_(width),
+        height_(height),
+        cells_(std::move(cells)) {}
 
   std::int32_t cell_mm() const { return cell_mm_; }
   bool empty() const { return width_ == 0; }
