@@ -49,6 +49,16 @@ struct MapLocalizer::EngineOf final : MapLocalizer::Engine {
   LocalTracker<Cell> tracker;
 };
 
+core::Grid<std::int8_t> map_indices(const core::ProbabilityGrid& map,
+                                    const SubmapSlamConfig& config) {
+  check_submap_slam_config(config);
+  const core::SepsCodec codec = make_codec(config);
+  core::Grid<std::int8_t> indices(map.geometry, std::int8_t{0});
+  for (std::size_t i = 0; i < map.cells.size(); ++i)
+    indices.cells[i] = static_cast<std::int8_t>(codec.quantize_nearest(map.cells[i]));
+  return indices;
+}
+
 MapLocalizer::MapLocalizer(const SubmapSlamConfig& config, core::Arithmetic arithmetic,
                            const core::Grid<std::int8_t>& map, const core::Pose2& initial) {
   check_submap_slam_config(config);

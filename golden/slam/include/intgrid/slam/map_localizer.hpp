@@ -25,6 +25,12 @@ struct MapFix {
       0.0;  // the narrow match's hits' sum, a share of every hit on the strongest cell
 };
 
+// A map's probabilities in config's S_eps indices (the submaps' codec): each cell's nearest
+// index, unknown (NaN) cells 0; the geometry unchanged. A map file read back (the SLAM's own
+// map.pgm, or another's) becomes what MapLocalizer takes.
+core::Grid<std::int8_t> map_indices(const core::ProbabilityGrid& map,
+                                    const SubmapSlamConfig& config);
+
 class MapLocalizer {
  public:
   // map: S_eps indices of config's codec, as SubmapSlam::map() writes them, in cells of
