@@ -37,6 +37,7 @@
 #include "intgrid/slam/grid_slam.hpp"
 #include "intgrid/slam/grid_slam_engine.hpp"
 #include "intgrid/slam/log_run.hpp"
+#include "intgrid/slam/map_localizer.hpp"
 #include "intgrid/slam/submap_slam.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 

@@ -169,6 +169,31 @@ void bind_submap_slam(py::module_& m) {
       .def("codec", &SubmapSlam::codec, "The map's SepsCodec.")
       .def("stats", &SubmapSlam::stats, "SubmapSlamStats so far.");
 
+  py::class_<slam::MapFix>(m, "MapFix", "One scan's estimate in a known map (MapLocalizer).")
+      .def_readonly("pose", &slam::MapFix::pose, "The robot's pose, in the map's frame.")
+      .def_readonly("matched", &slam::MapFix::matched, "The scan had enough hits and was matched.")
+      .def_readonly("wide", &slam::MapFix::wide, "The wide window was searched.")
+      .def_readonly("evidence", &slam::MapFix::evidence,
+                    "The narrow match's hits' sum, a share of every hit on the strongest cell.")
+      .def("__repr__", [](const py::object& self) { return fields_repr(self); });
+
+  py::class_<slam::MapLocalizer>(
+      m, "MapLocalizer",
+      "Localization scan after scan in a known map: the submaps SLAM's localization event "
+      "against the map, from a given pose at the first scan; no mapping, no loop closure.")
+      .def(py::init([](const SubmapSlamConfig& cfg, const py::object& arithmetic,
+                       const core::ProbabilityGrid& known, const core::Pose2& initial) {
+             const core::Arithmetic a = arithmetic_of(arithmetic);
+             py::gil_scoped_release release;
+             return std::make_unique<slam::MapLocalizer>(cfg, a, slam::map_indices(known, cfg),
+                                                         initial);
+           }),
+           "config"_a, "arithmetic"_a, "map"_a, "initial"_a,
+           "map: a ProbabilityGrid in cells of config.cell (a RosMap's grid); initial: the robot's "
+           "pose in the map's frame at the first scan localize takes.")
+      .def("localize", &slam::MapLocalizer::localize, py::call_guard<py::gil_scoped_release>(),
+           "The next scan's MapFix.", "scan"_a);
+
   m.def(
       "run_submap_slam",
       [](const core::Log& log, const SubmapSlamConfig& cfg, const py::object& arithmetic) {
