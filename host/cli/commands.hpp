@@ -23,6 +23,7 @@ void add_demo_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_slam_command(CLI::App& app);
 void add_globloc_command(CLI::App& app);
+void add_localize_command(CLI::App& app);
 void add_hw_config_command(CLI::App& app);
 // The grid engine's settings as options (--cell, --lambda, --xi, ...), for the figures' sweeps.
 // `intgrid slam` adds the same options (slam_command.cpp), the five both engines have setting

@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
   intgrid::cli::add_simulate_command(app);
   intgrid::cli::add_slam_command(app);
   intgrid::cli::add_globloc_command(app);
+  intgrid::cli::add_localize_command(app);
   intgrid::cli::add_hw_config_command(app);
   // After the subcommands, which would inherit it.
   app.footer("Run 'intgrid SUBCOMMAND --help' for a subcommand's options.");

@@ -1,7 +1,5 @@
 #include "cli/slam_job.hpp"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +12,7 @@
 #include "cli/log_input.hpp"
 #include "cli/output_folder_option.hpp"
 #include "cli/progress.hpp"
+#include "cli/trajectory_output.hpp"
 #include "intgrid/core/parallel.hpp"
 #include "intgrid/figures/figure_layout.hpp"
 #include "intgrid/io/atomic_file.hpp"
@@ -27,23 +26,6 @@
 
 namespace intgrid::cli {
 namespace {
-
-nlohmann::json error_json(const slam::TrajectoryError& e) {
-  return {{"rmse_m", e.rmse},
-          {"max_m", e.max},
-          {"matched", e.matched},
-          {"mean_heading_error_deg", e.mean_heading * 180.0 / M_PI}};
-}
-
-void write_trajectory(const std::filesystem::path& file,
-                      const std::vector<slam::TimedPose>& poses) {
-  io::write_file_atomically(file, [&](std::ostream& out) {
-    out << "# t x y theta (s, m, m, rad): the SLAM estimate of each scan\n";
-    for (const slam::TimedPose& p : poses)
-      out << io::format_number(p.t) << ' ' << io::format_number(p.pose.x) << ' '
-          << io::format_number(p.pose.y) << ' ' << io::format_number(p.pose.theta) << '\n';
-  });
-}
 
 nlohmann::json relation_json(const slam::RelationError& e) {
   return {{"matched", e.matched},
@@ -113,13 +95,6 @@ std::vector<slam::TimedPose> by_time(std::vector<slam::TimedPose> poses) {
   return poses;
 }
 
-// The peak resident set of this process so far (bytes; Linux reports ru_maxrss in KiB).
-std::size_t peak_memory_bytes() {
-  struct rusage usage {};
-  if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
-  return static_cast<std::size_t>(usage.ru_maxrss) * 1024;
-}
-
 // The submaps engine's settings, nested as SubmapSlamConfig is (the fields' paths of
 // check_submap_slam_config), and the map's eps.
 nlohmann::json submap_settings_json(const slam::SubmapSlamConfig& c, const core::SepsCodec& codec) {
@@ -169,12 +144,6 @@ nlohmann::json submap_settings_json(const slam::SubmapSlamConfig& c, const core:
             {"optimize_every", g.optimize_every},
             {"iterations", g.iterations},
             {"huber", g.huber}}}};
-}
-
-std::vector<core::Pose2> positions(const std::vector<slam::TimedPose>& poses) {
-  std::vector<core::Pose2> out;
-  for (const slam::TimedPose& p : poses) out.push_back(p.pose);
-  return out;
 }
 
 }  // namespace
@@ -394,7 +363,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
         stretches_json(slam::worst_stretches(slam_results), log.scans.front().t);
   }
 
-  write_trajectory(out.file("trajectory.txt"), r.run.trajectory);
+  write_trajectory(out.file("trajectory.txt"), r.run.trajectory, "the SLAM estimate of each scan");
   if (o.relations) write_relation_errors(out.file("relations.csv"), slam_results, odometry_results);
   const core::ProbabilityGrid map = slam::slam_map_probabilities(r.run);
   io::write_ros_map(out.file("map.yaml"), io::RosMap{map});

@@ -226,6 +226,7 @@ TEST_F(Cli, HelpShowsNoLibraryInternals) {
                                                 "simulate",
                                                 "slam",
                                                 "globloc",
+                                                "localize",
                                                 "hw-config"};
   for (const std::string& sub : subcommands) {
     SCOPED_TRACE(sub);
