@@ -21,8 +21,7 @@ struct MapLocalizer::Engine {
   virtual ~Engine() = default;
   virtual TrackStep localize(const QuantizedScan& scan, const SlamSensor& sensor) = 0;
   SubmapSlamConfig config;
-  core::Scan geometry;  // the last scan's (ranges cleared), and its form in the path's units
-  std::shared_ptr<const SlamSensor> sensor;
+  RecentSensors sensors;
 };
 
 template <class Cell>
@@ -87,16 +86,12 @@ MapLocalizer& MapLocalizer::operator=(MapLocalizer&&) noexcept = default;
 
 MapFix MapLocalizer::localize(const core::Scan& scan) {
   const std::string label = scan_label(++scans_, scan.t);
-  if (!engine_->sensor || geometry_difference(scan, engine_->geometry) != nullptr) {
-    engine_->sensor = make_slam_sensor(scan, label);
-    engine_->geometry = scan;
-    engine_->geometry.ranges.assign(scan.ranges.size(), 0.0);
-  }
+  const std::shared_ptr<const SlamSensor> sensor = recent_sensor(engine_->sensors, scan, label);
   const QuantizedScan q =
       quantize_scan(scan, previous_robot_ ? &*previous_robot_ : nullptr,
                     engine_->config.sensor.max_range, label, readings_, unusable_readings_);
   previous_robot_ = scan.robot;
-  const TrackStep step = engine_->localize(q, *engine_->sensor);
+  const TrackStep step = engine_->localize(q, *sensor);
   MapFix fix;
   fix.pose = core::compose(frame_, to_pose2(step.pose));
   fix.pose.theta = core::wrap_angle(fix.pose.theta);

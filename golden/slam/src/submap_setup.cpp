@@ -9,6 +9,7 @@
 #include "intgrid/core/ray_insertion.hpp"
 #include "intgrid/core/resolution.hpp"
 #include "intgrid/core/units.hpp"
+#include "intgrid/slam/grid_slam.hpp"
 
 namespace intgrid::slam {
 
@@ -90,7 +91,13 @@ TrackerSetup make_tracker_setup(const SubmapSlamConfig& c, const core::SepsCodec
   return s;
 }
 
-std::shared_ptr<SlamSensor> make_slam_sensor(const core::Scan& scan, const std::string& label) {
+std::shared_ptr<const SlamSensor> recent_sensor(RecentSensors& recent, const core::Scan& scan,
+                                                const std::string& label) {
+  for (auto it = recent.begin(); it != recent.end(); ++it)
+    if (geometry_difference(scan, it->first) == nullptr) {
+      std::rotate(recent.begin(), it, it + 1);
+      return recent.front().second;
+    }
   const double mount = std::hypot(scan.sensor_mount.x, scan.sensor_mount.y);
   if (!std::isfinite(mount) || mount > 100.0 || !std::isfinite(scan.sensor_mount.theta))
     core::fail<std::invalid_argument>(label +
@@ -104,7 +111,11 @@ std::shared_ptr<SlamSensor> make_slam_sensor(const core::Scan& scan, const std::
   sensor->mount_x_mm = static_cast<std::int32_t>(millimetres(scan.sensor_mount.x));
   sensor->mount_y_mm = static_cast<std::int32_t>(millimetres(scan.sensor_mount.y));
   sensor->mount_theta = static_cast<std::int32_t>(angle_units(scan.sensor_mount.theta));
-  return sensor;
+  core::Scan key = scan;
+  key.ranges.assign(scan.ranges.size(), 0.0);
+  recent.insert(recent.begin(), {std::move(key), std::move(sensor)});
+  if (recent.size() > kRecentSensors) recent.pop_back();
+  return recent.front().second;
 }
 
 }  // namespace intgrid::slam

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "intgrid/core/seps.hpp"
 #include "intgrid/core/types.hpp"
@@ -41,9 +43,15 @@ core::IsmTable<LogOdds> make_table(const SubmapSlamConfig& c, const core::SepsCo
 
 TrackerSetup make_tracker_setup(const SubmapSlamConfig& c, const core::SepsCodec& codec);
 
-// scan's geometry (bearings, mount) in the path's units. Throws std::invalid_argument, naming
-// label, for a scan of no ranges or more than 100000, or a sensor mounted more than 100 m from
-// the robot.
-std::shared_ptr<SlamSensor> make_slam_sensor(const core::Scan& scan, const std::string& label);
+// The scan geometries seen last, most recent first, each with its form in the path's units.
+using RecentSensors = std::vector<std::pair<core::Scan, std::shared_ptr<const SlamSensor>>>;
+inline constexpr std::size_t kRecentSensors = 8;
+
+// scan's geometry (bearings, mount) in the path's units, shared by the scans that state the same
+// one: looked up among `recent` (an interlaced laser alternates two), else made and put in front,
+// the oldest of more than kRecentSensors let go. Throws std::invalid_argument, naming label, for
+// a scan of no ranges or more than 100000, or a sensor mounted more than 100 m from the robot.
+std::shared_ptr<const SlamSensor> recent_sensor(RecentSensors& recent, const core::Scan& scan,
+                                                const std::string& label);
 
 }  // namespace intgrid::slam

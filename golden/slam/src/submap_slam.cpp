@@ -529,7 +529,7 @@ SubmapSlam::SubmapSlam(const SubmapSlamConfig& config, core::Arithmetic arithmet
                        const core::Scan& first)
     : first_t_(first.t), frame_(first.robot), previous_robot_(first.robot) {
   check_submap_slam_config(config);
-  sensor_for(first, scan_label(1, first.t));
+  recent_sensor(sensors_, first, scan_label(1, first.t));
   const core::SepsCodec codec = make_codec(config);
   TrackerSetup s = make_tracker_setup(config, codec);
   if (arithmetic == core::Arithmetic::integer)
@@ -557,25 +557,10 @@ SubmapSlam::~SubmapSlam() = default;
 SubmapSlam::SubmapSlam(SubmapSlam&&) noexcept = default;
 SubmapSlam& SubmapSlam::operator=(SubmapSlam&&) noexcept = default;
 
-std::shared_ptr<const SlamSensor> SubmapSlam::sensor_for(const core::Scan& scan,
-                                                         const std::string& label) {
-  for (auto it = sensors_.begin(); it != sensors_.end(); ++it)
-    if (geometry_difference(scan, it->first) == nullptr) {
-      std::rotate(sensors_.begin(), it, it + 1);
-      return sensors_.front().second;
-    }
-  std::shared_ptr<SlamSensor> sensor = make_slam_sensor(scan, label);
-  core::Scan key = scan;
-  key.ranges.assign(scan.ranges.size(), 0.0);
-  sensors_.insert(sensors_.begin(), {std::move(key), std::move(sensor)});
-  if (sensors_.size() > kRecentSensors) sensors_.pop_back();
-  return sensors_.front().second;
-}
-
 void SubmapSlam::insert(const core::Scan& scan) {
   const std::size_t number = engine_->stats.scans + 1;
   const std::string label = scan_label(number, scan.t);
-  std::shared_ptr<const SlamSensor> sensor = sensor_for(scan, label);
+  std::shared_ptr<const SlamSensor> sensor = recent_sensor(sensors_, scan, label);
   const QuantizedScan q =
       quantize_scan(scan, number > 1 ? &previous_robot_ : nullptr, engine_->config.sensor.max_range,
                     label, engine_->stats.readings, engine_->stats.unusable_readings);

@@ -206,14 +206,11 @@ class SubmapSlam {
   struct Engine;
   template <class Cell>
   struct EngineOf;
-  // The per-scan path's form of scan's geometry, shared by the scans that state the same one: the
-  // kRecentSensors geometries seen last are looked up (an interlaced laser alternates two).
-  std::shared_ptr<const SlamSensor> sensor_for(const core::Scan& scan, const std::string& label);
-  static constexpr std::size_t kRecentSensors = 8;
-
   std::unique_ptr<Engine> engine_;
   double first_t_ = 0.0;
-  std::vector<std::pair<core::Scan, std::shared_ptr<const SlamSensor>>> sensors_;  // recent first
+  // The scan geometries seen last, most recent first, with their form in the per-scan path's
+  // units (recent_sensor, submap_setup.hpp).
+  std::vector<std::pair<core::Scan, std::shared_ptr<const SlamSensor>>> sensors_;
   core::Pose2 frame_, previous_robot_;
   std::vector<double> times_;  // every scan's
 };
