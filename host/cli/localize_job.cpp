@@ -32,8 +32,8 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   const LogInput input = read_log_input(o.log);
   const core::Log& log = input.log;
   if (log.scans.empty()) throw io::InputError(o.log, 0, "scans", "the log has no scans");
-  std::optional<core::Log> reference;
-  if (o.reference) reference = io::read_log(*o.reference);
+  std::optional<std::vector<slam::TimedPose>> reference;
+  if (o.reference) reference = slam::scan_poses(io::read_log(*o.reference));
 
   slam::MapLocalizer localizer(config, o.arithmetic, slam::map_indices(ros.grid, config),
                                o.initial);
@@ -61,10 +61,9 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
     odometry.push_back(
         {scan.t, core::compose(o.initial, core::relative(log.scans.front().robot, scan.robot))});
   if (reference) {
-    const std::vector<slam::TimedPose> ref = slam::scan_poses(*reference);
     try {
-      r.ate = slam::absolute_trajectory_error(r.trajectory, ref);
-      r.odometry_ate = slam::absolute_trajectory_error(odometry, ref);
+      r.ate = slam::absolute_trajectory_error(r.trajectory, *reference);
+      r.odometry_ate = slam::absolute_trajectory_error(odometry, *reference);
     } catch (const std::invalid_argument& e) {
       throw io::InputError(*o.reference, 0, "t", std::string(e.what()) + " in " + o.log.string());
     }
@@ -104,8 +103,7 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   io::RgbImage image = io::render_probability_grid(ros.grid);
   io::draw_polyline_world(image, ros.grid.geometry, positions(odometry), {150, 150, 150});
   if (reference)
-    io::draw_polyline_world(image, ros.grid.geometry, positions(slam::scan_poses(*reference)),
-                            {30, 160, 30});
+    io::draw_polyline_world(image, ros.grid.geometry, positions(*reference), {30, 160, 30});
   io::draw_polyline_world(image, ros.grid.geometry, positions(r.trajectory), {220, 30, 30});
   std::vector<std::string> caption = {
       "Lines: red the localized path, grey the raw odometry from the same start" +

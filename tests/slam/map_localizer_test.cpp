@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -47,19 +48,20 @@ const World& loop_world() {
 // next to free space) at the largest index, free cells at its negative, the obstacles' insides
 // unknown (0), as no ray reaches them.
 core::Grid<std::int8_t> world_map(const core::ProbabilityGrid& world, const SubmapSlamConfig& c) {
-  const SubmapSlam probe(c, core::Arithmetic::integer, loop_world().run.log.scans.front());
-  const int top = probe.codec().max_index();
   const core::GridGeometry& g = world.geometry;
   const auto free = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < g.width && y < g.height && world.at(x, y) < 0.5;
   };
-  core::Grid<std::int8_t> map(g, std::int8_t{0});
+  core::ProbabilityGrid seen(g, std::numeric_limits<double>::quiet_NaN());
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const bool surface = free(x - 1, y) || free(x + 1, y) || free(x, y - 1) || free(x, y + 1);
-      map.at(x, y) = static_cast<std::int8_t>(free(x, y) ? -top : surface ? top : 0);
+      if (free(x, y))
+        seen.at(x, y) = 0.0;
+      else if (surface)
+        seen.at(x, y) = 1.0;
     }
-  return map;
+  return map_indices(seen, c);  // 0 and 1 saturate to the largest indices, NaN is 0
 }
 
 struct TrackingError {
