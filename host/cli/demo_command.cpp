@@ -125,7 +125,7 @@ nlohmann::json demo_globloc_section(const std::filesystem::path& data,
       "global localization of every %zuth raw scan (%s) in %s, each from no prior, pose "
       "occupancy grid %g m x %d headings, %d readings a scan:\n",
       o.every, o.log.filename().string().c_str(), o.map.filename().string().c_str(),
-      o.config.pose_res, o.config.headings, o.beams);
+      o.config.pose_res, o.config.headings, o.sequence.beams);
   const GlobLocJobResult r = run_globloc_job(o);
   std::printf(
       "  %zu of %zu scans at the reference's time within 0.5 m and 15 degrees of its pose "

@@ -27,7 +27,8 @@ const FieldFlags& global_loc_flags() {
       {"sensor.sigma", "--sigma"},      {"sensor.max_range", "--max-range"},
       {"seps_levels", "--levels"},      {"veto_levels", "--veto-levels"},
       {"memory_limit", "--max-memory"}, {"refine_levels", "--refine-levels"},
-      {"max_scans", "--track"}};
+      {"max_scans", "--track"},         {"step_position", "--track-step"},
+      {"step_heading", "--track-step"}};
   return flags;
 }
 
@@ -101,11 +102,11 @@ void add_globloc_command(CLI::App& app) {
   cmd->add_option("--every", o->every, "localize every N-th of the selected scans")
       ->transform(whole_range(1, 1'000'000))
       ->capture_default_str();
-  cmd->add_option("--beams", o->beams,
+  cmd->add_option("--beams", o->sequence.beams,
                   "readings a scan that score every pose cell, spread evenly over it (0: all)")
       ->transform(whole_range(0, 100'000))
       ->capture_default_str();
-  cmd->add_option("--verify-beams", o->verify_beams,
+  cmd->add_option("--verify-beams", o->sequence.verify_beams,
                   "pog: readings a scan that rescore the best hypotheses (0: all, the whole scan)")
       ->transform(whole_range(0, 100'000))
       ->capture_default_str();
@@ -136,8 +137,8 @@ void add_globloc_command(CLI::App& app) {
   cmd->add_option_function<std::vector<double>>(
          "--track-step",
          [o](const std::vector<double>& v) {
-           o->track_step_position = v[0];
-           o->track_step_heading = v[1] * std::numbers::pi / 180.0;
+           o->sequence.step_position = v[0];
+           o->sequence.step_heading = v[1] * std::numbers::pi / 180.0;
          },
          "with --track: fuse a scan once odometry moved the sensor METRES or turned it DEGREES "
          "since the scan fused before")

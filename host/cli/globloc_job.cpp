@@ -256,35 +256,23 @@ struct TrackResult {
   std::size_t scans = 0;  // scans fused
 };
 
-// Localization from a sequence: scan `first` and the scans after it that odometry puts a step
-// away from the one fused before, fused until the answer is unambiguous or o.track are fused.
+// Localization from a sequence: scan `first` and the scans after it, as SequenceLocalizer takes
+// them, until the answer is unambiguous or o.track are fused.
 TrackResult track_from(const localization::LocalizationMap& map, const core::Log& log,
-                       std::size_t first, std::span<const localization::RangeReading> screening,
-                       std::span<const localization::RangeReading> verification,
-                       const localization::PoseSearchOptions& search, const GlobLocJobOptions& o,
-                       localization::PoseScores* scores) {
-  std::optional<localization::PoseTracker> tracker;
-  naming_flags(global_loc_flags(), [&] { tracker.emplace(map, search, o.track); });
-  tracker->add_scan(screening, verification, core::Pose2{});
-  TrackResult r{tracker->search(log.scans[first].sensor_mount), first, 1};
-  for (std::size_t j = first + 1;
-       r.found.ambiguous && tracker->scans() < o.track && j < log.scans.size(); ++j) {
-    const core::Pose2 motion =
-        core::relative(log.scans[r.last].sensor_pose(), log.scans[j].sensor_pose());
-    if (std::hypot(motion.x, motion.y) < o.track_step_position &&
-        std::abs(core::wrap_angle(motion.theta)) < o.track_step_heading)
-      continue;
-    const std::vector<localization::RangeReading> readings =
-        localization::readings_of(log.scans[j], o.beams, o.config.sensor.max_range);
-    if (readings.empty()) continue;
-    tracker->add_scan(
-        readings,
-        localization::readings_of(log.scans[j], o.verify_beams, o.config.sensor.max_range), motion);
-    r.last = j;
-    r.found = tracker->search(log.scans[j].sensor_mount);
-  }
-  r.scans = tracker->scans();
-  if (scores) *scores = tracker->fused_scores();
+                       std::size_t first, const localization::PoseSearchOptions& search,
+                       const GlobLocJobOptions& o, localization::PoseScores* scores) {
+  localization::SequenceOptions sequence = o.sequence;
+  sequence.max_scans = o.track;
+  std::optional<localization::SequenceLocalizer> localizer;
+  naming_flags(global_loc_flags(), [&] { localizer.emplace(map, search, sequence); });
+  TrackResult r;
+  for (std::size_t j = first; !localizer->done() && j < log.scans.size(); ++j)
+    if (std::optional<localization::PoseSearchResult> found = localizer->offer(log.scans[j])) {
+      r.found = std::move(*found);
+      r.last = j;
+    }
+  r.scans = localizer->scans();
+  if (scores) *scores = localizer->fused_scores();
   return r;
 }
 
@@ -317,9 +305,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
     bad_option("--tolerance", "must be positive");
   if (o.track > 0 && o.method != localization::GlobalMethod::pose_grid)
     bad_option("--track", "fuses scans with the pose grid only (--method pog)");
-  if (!(o.track_step_position >= 0.0) || !(o.track_step_heading >= 0.0) ||
-      !std::isfinite(o.track_step_position) || !std::isfinite(o.track_step_heading))
-    bad_option("--track-step", "must be finite and non-negative");
+  naming_flags(global_loc_flags(), [&] { localization::check_sequence_options(o.sequence); });
   std::optional<std::vector<core::TimedPose>> reference;
   const std::optional<std::filesystem::path>& reference_file =
       o.reference ? o.reference : o.reference_trajectory;
@@ -347,15 +333,15 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
   GlobLocJobResult r;
   for (std::size_t i = first; i <= last; i += o.every) {
     std::vector<localization::RangeReading> readings =
-        localization::readings_of(log.scans[i], o.beams, o.config.sensor.max_range);
+        localization::readings_of(log.scans[i], o.sequence.beams, o.config.sensor.max_range);
     if (readings.empty())
       ++r.skipped_scans;
     else  // the verification readings are the pose grid's alone
-      jobs.push_back(
-          {i, std::move(readings),
-           o.method == localization::GlobalMethod::pose_grid
-               ? localization::readings_of(log.scans[i], o.verify_beams, o.config.sensor.max_range)
-               : std::vector<localization::RangeReading>{}});
+      jobs.push_back({i, std::move(readings),
+                      o.method == localization::GlobalMethod::pose_grid
+                          ? localization::readings_of(log.scans[i], o.sequence.verify_beams,
+                                                      o.config.sensor.max_range)
+                          : std::vector<localization::RangeReading>{}});
   }
   if (jobs.empty())
     throw io::InputError(
@@ -393,8 +379,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
       const auto start = Clock::now();
       localization::PoseScores* scores = n == 0 ? &first_scores : nullptr;
       if (o.method == localization::GlobalMethod::pose_grid && o.track > 0) {
-        const TrackResult tracked = track_from(*lmap, log, jobs[n].index, jobs[n].readings,
-                                               jobs[n].verification, search, o, scores);
+        const TrackResult tracked = track_from(*lmap, log, jobs[n].index, search, o, scores);
         s.index = tracked.last;
         s.t = log.scans[tracked.last].t;
         s.scans_fused = tracked.scans;
@@ -459,7 +444,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
       {"settings",
        {{"pose_res", c.pose_res},
         {"headings", c.headings},
-        {"beams", o.beams},
+        {"beams", o.sequence.beams},
         {"sigma", c.sensor.sigma},
         {"max_range", c.sensor.max_range},
         {"seps_bits", c.seps_bits},
@@ -467,7 +452,7 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         {"veto_levels", c.veto_levels},
         {"scans", std::to_string(first) + ":" + std::to_string(last)},
         {"every", o.every},
-        {"verify_beams", o.verify_beams},
+        {"verify_beams", o.sequence.verify_beams},
         {"hypotheses", search.hypotheses},
         {"verified", search.verified},
         {"ambiguity_levels", search.ambiguity_levels},
@@ -475,7 +460,8 @@ GlobLocJobResult run_globloc_job(const GlobLocJobOptions& o) {
         {"refine_levels", c.refine_levels},
         {"grazing_hits", c.grazing_hits},
         {"track", o.track},
-        {"track_step", {o.track_step_position, o.track_step_heading * 180.0 / std::numbers::pi}},
+        {"track_step",
+         {o.sequence.step_position, o.sequence.step_heading * 180.0 / std::numbers::pi}},
         {"max_memory_mb", static_cast<double>(c.memory_limit) / 1e6}}},
       {"pose_grid",
        {{"width", lmap->width()},

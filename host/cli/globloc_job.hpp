@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "intgrid/localization/global_localization.hpp"
+#include "intgrid/localization/sequence_localizer.hpp"
 
 namespace intgrid::cli {
 
@@ -31,18 +32,15 @@ struct GlobLocJobOptions {
   double heading_tolerance = kGlobLocHeadingTolerance;        // rad: and this
   std::string scans;      // "FIRST:LAST", 0-based and inclusive; empty: every scan
   std::size_t every = 1;  // of the selected scans, localize every every-th
-  int beams = 60;         // screening readings a scan, spread over it (0: all)
-  int verify_beams = 0;   // the pose grid's verification readings a scan (0: all, the whole scan)
   localization::GlobalMethod method = localization::GlobalMethod::pose_grid;
   localization::GlobalLocConfig config;
   localization::PoseSearchOptions search;  // threads: 0 is every core
-  // Localization from a sequence (pog only): from each selected scan, fuse up to `track` scans
-  // (0: each scan on its own), stopping at the first unambiguous answer. A scan is fused once
-  // odometry has moved the sensor track_step_position or turned it track_step_heading since the
-  // one fused before it (chosen by hand: far enough that a scan sees something new).
+  // Each scan's readings (beams, verify_beams: the latter the pose grid's alone) and, with
+  // `track`, localization from a sequence (pog only): from each selected scan, up to `track`
+  // scans fused (0: each scan on its own) as SequenceLocalizer fuses them; its max_scans is
+  // `track`'s.
+  localization::SequenceOptions sequence;
   std::size_t track = 0;
-  double track_step_position = 0.5;                             // m
-  double track_step_heading = 15.0 * std::numbers::pi / 180.0;  // rad
   bool progress = true;
 };
 

@@ -1,7 +1,7 @@
 // The refinement on the map's own cells and localization from a sequence (docs/algorithms.md 7):
 // the fine map's clearance and first hits against brute force, refined poses against the truth,
 // the fused grid against a per-cell composition of poses, and a corridor that one scan cannot
-// place and a short drive can.
+// place and a short drive can, fused as a log's scans come (SequenceLocalizer).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,9 +10,13 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "intgrid/localization/global_localization.hpp"
+#include "intgrid/localization/sequence_localizer.hpp"
 #include "intgrid/simulation/simulator.hpp"
 
 using namespace intgrid::core;
@@ -373,6 +377,89 @@ TEST(PoseTracker, ACorridorOneScanCannotPlaceIsPlacedAfterAShortDrive) {
   EXPECT_LE(scans + 1, 15u);
   EXPECT_LE(std::hypot(r.estimate.robot.x - truth.x, r.estimate.robot.y - truth.y), 0.15);
   EXPECT_LE(std::abs(wrap_angle(r.estimate.robot.theta - truth.theta)), 2.0 * kPi / 180.0);
+}
+
+// The same corridor driven in 0.2 m steps, as a log gives the scans: the first fused, then each
+// that odometry puts 0.5 m from the last fused (every third), until the answer is unambiguous;
+// the answers against a PoseTracker fed those scans by hand (a second formulation), and nothing
+// taken once done.
+TEST(SequenceLocalizer, FusesTheScansAStepApartUntilTheAnswerIsUnambiguous) {
+  const ProbabilityGrid world = corridor();
+  GlobalLocConfig config;
+  config.sensor.max_range = 4.0;
+  const LocalizationMap lmap(world, 0.65, 0.196, config);
+  PoseSearchOptions options;
+  options.hypotheses = 2;
+  SequenceOptions sequence;
+  sequence.max_scans = 20;
+  SequenceLocalizer localizer(lmap, options, sequence);
+  PoseTracker by_hand(lmap, options, 20);
+  std::optional<Scan> last_fused;
+  std::size_t offered = 0;
+  Pose2 truth{12.0, 2.0, 0.0};
+  PoseSearchResult answer;
+  for (; offered < 60 && !localizer.done(); ++offered) {
+    Scan scan = simulate_scan(world, lidar_sensor(90, 2.0 * kPi, 4.0),
+                              RangeNoiseConfig{0.02, 0.0, 0.0}, truth, 900 + offered);
+    scan.robot = truth;  // odometry: the true motion
+    const std::optional<PoseSearchResult> found = localizer.offer(scan);
+    EXPECT_EQ(found.has_value(), offered % 3 == 0) << offered;
+    if (found) {
+      const std::vector<RangeReading> readings = readings_of(scan, 60, 4.0),
+                                      whole = readings_of(scan, 0, 4.0);
+      by_hand.add_scan(
+          readings, whole,
+          last_fused ? relative(last_fused->sensor_pose(), scan.sensor_pose()) : Pose2{});
+      last_fused = scan;
+      const PoseSearchResult expected = by_hand.search(scan.sensor_mount);
+      EXPECT_EQ(found->ambiguous, expected.ambiguous) << offered;
+      EXPECT_EQ(found->estimate.robot.x, expected.estimate.robot.x) << offered;
+      EXPECT_EQ(found->estimate.robot.theta, expected.estimate.robot.theta) << offered;
+      answer = *found;
+    }
+    truth = compose(truth, Pose2{0.2, 0.0, 0.0});
+  }
+  std::printf("[sequence] unambiguous after %zu scans fused of %zu offered\n", localizer.scans(),
+              offered);
+  ASSERT_TRUE(localizer.done());
+  EXPECT_FALSE(answer.ambiguous);
+  EXPECT_GE(localizer.scans(), 2u);  // one scan cannot place it (the test above)
+  EXPECT_EQ(localizer.scans(), by_hand.scans());
+  const Pose2 at_answer = compose(truth, Pose2{-0.2, 0.0, 0.0});
+  EXPECT_LE(
+      std::hypot(answer.estimate.robot.x - at_answer.x, answer.estimate.robot.y - at_answer.y),
+      0.15);
+  Scan more = simulate_scan(world, lidar_sensor(90, 2.0 * kPi, 4.0),
+                            RangeNoiseConfig{0.02, 0.0, 0.0}, truth, 999);
+  more.robot = compose(truth, Pose2{1.0, 0.0, 0.0});
+  EXPECT_FALSE(localizer.offer(more).has_value());
+}
+
+TEST(SequenceLocalizer, StopsAtMaxScansAndNamesABadStep) {
+  const ProbabilityGrid world = corridor();
+  GlobalLocConfig config;
+  config.sensor.max_range = 4.0;
+  const LocalizationMap lmap(world, 0.65, 0.196, config);
+  SequenceOptions sequence;
+  sequence.max_scans = 1;
+  SequenceLocalizer localizer(lmap, PoseSearchOptions{}, sequence);
+  Scan scan = simulate_scan(world, lidar_sensor(90, 2.0 * kPi, 4.0),
+                            RangeNoiseConfig{0.02, 0.0, 0.0}, Pose2{12.0, 2.0, 0.0}, 5);
+  scan.robot = Pose2{12.0, 2.0, 0.0};
+  const std::optional<PoseSearchResult> found = localizer.offer(scan);
+  ASSERT_TRUE(found.has_value());
+  EXPECT_TRUE(found->ambiguous);  // the corridor's middle, one scan
+  EXPECT_TRUE(localizer.done());
+  for (const auto& [field, bad] :
+       {std::pair{"step_position", SequenceOptions{60, 0, 10, -0.1, 0.2}},
+        std::pair{"step_heading", SequenceOptions{60, 0, 10, 0.5, std::nan("")}}}) {
+    try {
+      check_sequence_options(bad);
+      ADD_FAILURE() << field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_TRUE(std::string(e.what()).starts_with(field)) << e.what();
+    }
+  }
 }
 
 }  // namespace
