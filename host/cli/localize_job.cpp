@@ -1,5 +1,6 @@
 #include "cli/localize_job.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -22,10 +23,10 @@ namespace intgrid::cli {
 
 LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   const io::RosMap ros = io::read_ros_map(o.map);
-  slam::SubmapSlamConfig config = o.config;
-  config.cell = ros.grid.geometry.resolution;
+  navigation::KnownMapLocalizerConfig config = o.config;
+  config.tracking.cell = ros.grid.geometry.resolution;
   try {
-    slam::check_submap_slam_config(config);
+    slam::check_submap_slam_config(config.tracking);
   } catch (const std::invalid_argument& e) {
     throw io::InputError(o.map, 0, "resolution", e.what());
   }
@@ -35,8 +36,13 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   std::optional<std::vector<slam::TimedPose>> reference;
   if (o.reference) reference = slam::scan_poses(io::read_log(*o.reference));
 
-  slam::MapLocalizer localizer(config, o.arithmetic, slam::map_indices(ros.grid, config),
-                               o.initial);
+  std::optional<navigation::KnownMapLocalizer> localizer;
+  try {
+    localizer.emplace(ros.grid, ros.occupied_thresh, ros.free_thresh, config, o.arithmetic,
+                      o.initial);
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(o.map, 0, "image", e.what());
+  }
   io::OutputFolder out = open_output_folder(o.out);
   LocalizeJobResult r;
   const auto start = std::chrono::steady_clock::now();
@@ -46,21 +52,27 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
     for (std::size_t i = 0; i < log.scans.size(); ++i) {
       const core::Scan& scan = log.scans[i];
       try {
-        r.fixes.push_back(localizer.localize(scan));
+        r.steps.push_back(localizer->localize(scan));
       } catch (const std::invalid_argument& e) {
         throw io::InputError(o.log, 0, "scans", e.what());
       }
-      r.trajectory.push_back({scan.t, r.fixes.back().pose});
+      if (r.steps.back().pose) r.trajectory.push_back({scan.t, *r.steps.back().pose});
       if (o.progress) progress(i + 1, log.scans.size());
     }
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // The odometry as a tracker without the map would have it: carried from the same start.
+  // The odometry as a tracker without the map would have it: carried from the first pose found.
+  const auto first_fix = std::find_if(r.steps.begin(), r.steps.end(),
+                                      [](const navigation::LocalizerStep& s) { return s.pose; });
   std::vector<slam::TimedPose> odometry;
-  for (const core::Scan& scan : log.scans)
-    odometry.push_back(
-        {scan.t, core::compose(o.initial, core::relative(log.scans.front().robot, scan.robot))});
-  if (reference) {
+  if (first_fix != r.steps.end()) {
+    const std::size_t f = static_cast<std::size_t>(first_fix - r.steps.begin());
+    for (std::size_t i = f; i < log.scans.size(); ++i)
+      odometry.push_back(
+          {log.scans[i].t, core::compose(*first_fix->pose,
+                                         core::relative(log.scans[f].robot, log.scans[i].robot))});
+  }
+  if (reference && !r.trajectory.empty()) {
     try {
       r.ate = slam::absolute_trajectory_error(r.trajectory, *reference);
       r.odometry_ate = slam::absolute_trajectory_error(odometry, *reference);
@@ -69,23 +81,31 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
     }
   }
 
-  std::size_t matched = 0, wide = 0;
-  for (const slam::MapFix& f : r.fixes) {
-    matched += f.matched;
-    wide += f.wide;
+  std::size_t matched = 0, wide = 0, lost = 0, tracked = 0;
+  for (const navigation::LocalizerStep& s : r.steps) {
+    matched += s.fix.matched;
+    wide += s.fix.wide;
+    lost += s.state == navigation::LocalizerState::lost;
+    tracked += s.state == navigation::LocalizerState::tracking;
   }
   const double log_seconds = log.scans.back().t - log.scans.front().t;
   r.metrics = {{"map", o.map.string()},
                {"log", o.log.string()},
                {"arith", o.arithmetic == core::Arithmetic::integer ? "int" : "float"},
                {"scans", log.scans.size()},
+               {"tracked_scans", tracked},
                {"matched_scans", matched},
                {"wide_searches", wide},
+               {"lost", lost},
                {"skipped_records", skipped_records_json(input.skipped)},
                {"seconds", r.seconds},
                {"log_seconds", log_seconds},
-               {"real_time_factor", r.seconds > 0.0 ? log_seconds / r.seconds : 0.0},
-               {"initial", {o.initial.x, o.initial.y, o.initial.theta}}};
+               {"real_time_factor", r.seconds > 0.0 ? log_seconds / r.seconds : 0.0}};
+  r.metrics["initial"] = o.initial ? nlohmann::json{o.initial->x, o.initial->y, o.initial->theta}
+                                   : nlohmann::json(nullptr);
+  r.metrics["first_pose_scan"] = first_fix != r.steps.end()
+                                     ? nlohmann::json(first_fix - r.steps.begin())
+                                     : nlohmann::json(nullptr);
   if (r.ate) {
     r.metrics["reference"] = o.reference->string();
     r.metrics["ate"] = error_json(*r.ate);
@@ -95,18 +115,31 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   write_trajectory(out.file("trajectory.txt"), r.trajectory,
                    "the localizer's estimate of each scan, in the map's frame");
   io::write_file_atomically(out.file("fit.csv"), [&](std::ostream& f) {
-    f << "t,evidence,matched,wide\n";
-    for (std::size_t i = 0; i < r.fixes.size(); ++i)
-      f << io::format_number(r.trajectory[i].t) << ',' << io::format_number(r.fixes[i].evidence)
-        << ',' << int{r.fixes[i].matched} << ',' << int{r.fixes[i].wide} << '\n';
+    f << "t,state,evidence,matched,wide,hits,fit,fused_scans\n";
+    for (std::size_t i = 0; i < r.steps.size(); ++i) {
+      const navigation::LocalizerStep& s = r.steps[i];
+      f << io::format_number(log.scans[i].t) << ',' << navigation::state_name(s.state) << ','
+        << io::format_number(s.fix.evidence) << ',' << int{s.fix.matched} << ',' << int{s.fix.wide}
+        << ',' << s.fix.hits << ',' << io::format_number(s.fix.fit) << ',' << s.fused_scans << '\n';
+    }
   });
   io::RgbImage image = io::render_probability_grid(ros.grid);
   io::draw_polyline_world(image, ros.grid.geometry, positions(odometry), {150, 150, 150});
   if (reference)
     io::draw_polyline_world(image, ros.grid.geometry, positions(*reference), {30, 160, 30});
-  io::draw_polyline_world(image, ros.grid.geometry, positions(r.trajectory), {220, 30, 30});
+  // Each stretch tracked without a break its own line: a robot found again elsewhere is not
+  // joined to where it was lost.
+  std::vector<slam::TimedPose> stretch;
+  for (std::size_t i = 0; i <= r.steps.size(); ++i) {
+    if (i < r.steps.size() && r.steps[i].pose) {
+      stretch.push_back({log.scans[i].t, *r.steps[i].pose});
+      continue;
+    }
+    io::draw_polyline_world(image, ros.grid.geometry, positions(stretch), {220, 30, 30});
+    stretch.clear();
+  }
   std::vector<std::string> caption = {
-      "Lines: red the localized path, grey the raw odometry from the same start" +
+      "Lines: red the localized path, grey the raw odometry from its first pose" +
           std::string(reference ? ", green the reference" : "") + ".",
       "Scale: one pixel is one " + io::format_number(ros.grid.geometry.resolution * 100.0) +
           " cm cell (" + io::format_number(1.0 / ros.grid.geometry.resolution) +

@@ -14,19 +14,20 @@ namespace {
 using namespace intgrid::cli_test;
 
 // The bundled log in the bundled map of its courtyard, from the reference's first pose (the
-// origin: the reference starts where the odometry does): the ATE against the reference in
-// metrics.json, every output written. The golden test (MapLocalizerData.*) measures 0.108 m.
-TEST_F(Cli, LocalizeTracksTheBundledLogInItsMap) {
+// origin: the reference starts where the odometry does) and with no initial pose (found by global
+// localization): the ATE against the reference in metrics.json, every scan tracked, every output
+// written. The golden tests (MapLocalizerData.*, KnownMapLocalizerData.*) measure 0.108 m and
+// 0.105 m.
+void localizes_the_bundled_log(const fs::path& dir, const std::string& initial) {
   const fs::path data = intgrid::test::data_dir();
-  const CliRun r =
-      run("localize --map " + (data / "malaga_telecom_map.yaml").string() + " --log " +
-          (data / "malaga_telecom_loop.log").string() + " --initial 0 0 0 --reference " +
-          (data / "malaga_telecom_loop_reference.log").string() + " --out " +
-          (dir_ / "out").string() + " --threads 2");
+  const CliRun r = run("localize --map " + (data / "malaga_telecom_map.yaml").string() + " --log " +
+                       (data / "malaga_telecom_loop.log").string() + initial + " --reference " +
+                       (data / "malaga_telecom_loop_reference.log").string() + " --out " +
+                       (dir / "out").string() + " --threads 2");
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* f : {"trajectory.txt", "fit.csv", "map.png", "metrics.json"})
-    EXPECT_TRUE(fs::exists(dir_ / "out" / f)) << f;
-  std::ifstream metrics(dir_ / "out" / "metrics.json");
+    EXPECT_TRUE(fs::exists(dir / "out" / f)) << f;
+  std::ifstream metrics(dir / "out" / "metrics.json");
   const std::string text((std::istreambuf_iterator<char>(metrics)), {});
   const auto number_after = [&](const std::string& key) {
     const std::size_t at = text.find("\"" + key + "\": ");
@@ -34,13 +35,30 @@ TEST_F(Cli, LocalizeTracksTheBundledLogInItsMap) {
     return std::stod(text.substr(at + key.size() + 4));
   };
   EXPECT_EQ(number_after("scans"), 225);
+  EXPECT_EQ(number_after("tracked_scans"), 225);
   EXPECT_EQ(number_after("matched_scans"), 225);
+  EXPECT_EQ(number_after("lost"), 0);
+  EXPECT_EQ(number_after("first_pose_scan"), 0);
   EXPECT_LT(number_after("rmse_m"), 0.15);  // the localizer's, written before the odometry's
-  std::ifstream fit(dir_ / "out" / "fit.csv");
-  std::string line;
-  std::size_t rows = 0;
-  while (std::getline(fit, line)) ++rows;
-  EXPECT_EQ(rows, 226u);  // the header and a row a scan
+  std::ifstream fit(dir / "out" / "fit.csv");
+  std::string line, header;
+  std::getline(fit, header);
+  EXPECT_EQ(header, "t,state,evidence,matched,wide,hits,fit,fused_scans");
+  std::size_t rows = 0, tracking = 0;
+  while (std::getline(fit, line)) {
+    ++rows;
+    tracking += line.find(",tracking,") != std::string::npos;
+  }
+  EXPECT_EQ(rows, 225u);  // a row a scan
+  EXPECT_EQ(tracking, 225u);
+}
+
+TEST_F(Cli, LocalizeTracksTheBundledLogInItsMap) {
+  localizes_the_bundled_log(dir_, " --initial 0 0 0");
+}
+
+TEST_F(Cli, LocalizeFindsTheBundledLogInItsMapWithNoInitialPose) {
+  localizes_the_bundled_log(dir_, "");
 }
 
 TEST_F(Cli, LocalizeNeedsAWholeInitialPose) {

@@ -1,6 +1,7 @@
 // MapLocalizer (map_localizer.hpp): the map given whole as the per-scan path's one submap.
 #include "intgrid/slam/map_localizer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -20,6 +21,8 @@ namespace intgrid::slam {
 struct MapLocalizer::Engine {
   virtual ~Engine() = default;
   virtual TrackStep localize(const QuantizedScan& scan, const SlamSensor& sensor) = 0;
+  // The last scan's hits at `pose`, and of them those within a cell of an occupied map cell.
+  virtual std::pair<std::size_t, std::size_t> fit(const SlamPose& pose) const = 0;
   SubmapSlamConfig config;
   RecentSensors sensors;
 };
@@ -41,11 +44,31 @@ struct MapLocalizer::EngineOf final : MapLocalizer::Engine {
     tracker.localize_in(LocalGrid<Cell>(tracker.setup().cell_mm, 0, 0, map.geometry.width,
                                         map.geometry.height, std::move(cells)),
                         initial);
+    // Cells within one cell (Chebyshev) of a cell of positive index.
+    const int w = map.geometry.width, h = map.geometry.height;
+    std::vector<std::int8_t> near(map.cells.size(), 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        if (map.cells[static_cast<std::size_t>(y) * w + x] <= 0) continue;
+        for (int v = std::max(0, y - 1); v <= std::min(h - 1, y + 1); ++v)
+          for (int u = std::max(0, x - 1); u <= std::min(w - 1, x + 1); ++u)
+            near[static_cast<std::size_t>(v) * w + u] = 1;
+      }
+    near_occupied = LocalGrid<std::int8_t>(tracker.setup().cell_mm, 0, 0, w, h, std::move(near));
   }
   TrackStep localize(const QuantizedScan& scan, const SlamSensor& s) override {
     return tracker.localize(scan, s);
   }
+  std::pair<std::size_t, std::size_t> fit(const SlamPose& pose) const override {
+    std::vector<int> cx, cy;
+    matching_detail::hit_cells(tracker.rays(), tracker.points(), pose.x_mm, pose.y_mm,
+                               static_cast<std::int32_t>(pose.theta), cx, cy);
+    std::size_t near = 0;
+    for (std::size_t p = 0; p < cx.size(); ++p) near += near_occupied.at(cx[p], cy[p]) > 0;
+    return {cx.size(), near};
+  }
   LocalTracker<Cell> tracker;
+  LocalGrid<std::int8_t> near_occupied{1};
 };
 
 core::Grid<std::int8_t> map_indices(const core::ProbabilityGrid& map,
@@ -98,6 +121,9 @@ MapFix MapLocalizer::localize(const core::Scan& scan) {
   fix.matched = step.matched;
   fix.wide = step.wide;
   fix.evidence = static_cast<double>(step.score_permille) * 1e-3;
+  const auto [hits, near] = engine_->fit(step.pose);
+  fix.hits = hits;
+  fix.fit = hits > 0 ? static_cast<double>(near) / static_cast<double>(hits) : 0.0;
   return fix;
 }
 

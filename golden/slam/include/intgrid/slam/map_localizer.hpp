@@ -23,6 +23,11 @@ struct MapFix {
   bool wide = false;     // the wide window was searched
   double evidence =
       0.0;  // the narrow match's hits' sum, a share of every hit on the strongest cell
+  // At `pose`: the scan's hits (readings below the maximum range), and the share of them within
+  // one cell of an occupied map cell (index > 0): how well the scan fits the map there, read
+  // from the map alone (a lost robot's hits fall anywhere).
+  std::size_t hits = 0;
+  double fit = 0.0;
 };
 
 // A map's probabilities in config's S_eps indices (the submaps' codec): each cell's nearest

@@ -1,0 +1,102 @@
+#include "intgrid/navigation/known_map_localizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "intgrid/core/failure.hpp"
+
+namespace intgrid::navigation {
+
+const char* state_name(LocalizerState state) {
+  switch (state) {
+    case LocalizerState::locating:
+      return "locating";
+    case LocalizerState::tracking:
+      return "tracking";
+    case LocalizerState::lost:
+      return "lost";
+    case LocalizerState::recovering:
+      return "recovering";
+  }
+  return "?";
+}
+
+void check_known_map_localizer_config(const KnownMapLocalizerConfig& c) {
+  slam::check_submap_slam_config(c.tracking);
+  localization::check_global_loc_config(c.global);
+  localization::check_pose_search_options(c.search);
+  localization::check_sequence_options(c.sequence);
+  core::require_field(
+      std::isfinite(c.lost.fit_share) && c.lost.fit_share > 0.0 && c.lost.fit_share < 1.0,
+      "lost.fit_share", "must be in (0, 1)");
+  core::require_field(c.lost.scans >= 1 && c.lost.scans <= 1000, "lost.scans", "must be 1..1000");
+  core::require_field(c.lost.recent >= 1 && c.lost.recent <= 100000, "lost.recent",
+                      "must be 1..100000");
+}
+
+KnownMapLocalizer::KnownMapLocalizer(const core::ProbabilityGrid& map, double occupied_threshold,
+                                     double free_threshold, const KnownMapLocalizerConfig& config,
+                                     core::Arithmetic arithmetic,
+                                     std::optional<core::Pose2> initial)
+    : config_((check_known_map_localizer_config(config), config)),
+      arithmetic_(arithmetic),
+      indices_(slam::map_indices(map, config.tracking)),
+      pose_grid_map_(map, occupied_threshold, free_threshold, config.global) {
+  if (initial) start_tracking(*initial);
+}
+
+KnownMapLocalizer::~KnownMapLocalizer() = default;
+
+void KnownMapLocalizer::start_tracking(const core::Pose2& pose) {
+  tracker_.emplace(config_.tracking, arithmetic_, indices_, pose);
+  search_.reset();
+  fits_.clear();
+  misfits_ = 0;
+  was_tracking_ = true;
+}
+
+bool KnownMapLocalizer::fits(double fit) {
+  if (static_cast<int>(fits_.size()) >= config_.lost.scans) {
+    std::vector<double> recent(fits_.begin(), fits_.end());
+    const auto middle = recent.begin() + static_cast<std::ptrdiff_t>(recent.size() / 2);
+    std::nth_element(recent.begin(), middle, recent.end());
+    if (fit < config_.lost.fit_share * *middle) return false;
+  }
+  fits_.push_back(fit);
+  if (static_cast<int>(fits_.size()) > config_.lost.recent) fits_.pop_front();
+  return true;
+}
+
+LocalizerStep KnownMapLocalizer::localize(const core::Scan& scan) {
+  LocalizerStep step;
+  if (tracker_) {
+    step.fix = tracker_->localize(scan);
+    step.state = LocalizerState::tracking;
+    step.pose = step.fix.pose;
+    if (step.fix.matched) misfits_ = fits(step.fix.fit) ? 0 : misfits_ + 1;
+    if (misfits_ >= config_.lost.scans) {
+      step.state = LocalizerState::lost;
+      step.pose.reset();
+      tracker_.reset();
+    }
+    return step;
+  }
+  step.state = was_tracking_ ? LocalizerState::recovering : LocalizerState::locating;
+  if (!search_) search_.emplace(pose_grid_map_, config_.search, config_.sequence);
+  const std::optional<localization::PoseSearchResult> found = search_->offer(scan);
+  step.fused_scans = search_->scans();
+  if (found && !found->ambiguous) {
+    start_tracking(found->estimate.robot);
+    step.fix = tracker_->localize(scan);
+    step.state = LocalizerState::tracking;
+    step.pose = step.fix.pose;
+    if (step.fix.matched) fits(step.fix.fit);
+  } else if (search_->done()) {
+    search_.reset();  // max_scans fused, still ambiguous: start again from the next scan
+  }
+  return step;
+}
+
+}  // namespace intgrid::navigation
