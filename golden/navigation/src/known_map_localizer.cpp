@@ -52,7 +52,6 @@ KnownMapLocalizer::~KnownMapLocalizer() = default;
 void KnownMapLocalizer::start_tracking(const core::Pose2& pose) {
   tracker_.emplace(config_.tracking, arithmetic_, indices_, pose);
   search_.reset();
-  fits_.clear();
   misfits_ = 0;
   was_tracking_ = true;
 }
