@@ -205,5 +205,6 @@ void bind_mapping(py::module_& m);
 void bind_io(py::module_& m);
 void bind_localization(py::module_& m);
 void bind_slam(py::module_& m);
+void bind_navigation(py::module_& m);
 
 }  // namespace intgrid::python

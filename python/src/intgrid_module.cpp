@@ -21,4 +21,5 @@ PYBIND11_MODULE(intgrid, m) {
   bind_io(m);
   bind_localization(m);
   bind_slam(m);
+  bind_navigation(m);
 }

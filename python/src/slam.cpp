@@ -175,6 +175,9 @@ void bind_submap_slam(py::module_& m) {
       .def_readonly("wide", &slam::MapFix::wide, "The wide window was searched.")
       .def_readonly("evidence", &slam::MapFix::evidence,
                     "The narrow match's hits' sum, a share of every hit on the strongest cell.")
+      .def_readonly("hits", &slam::MapFix::hits, "The scan's hits at pose.")
+      .def_readonly("fit", &slam::MapFix::fit,
+                    "The share of the hits within a cell of an occupied map cell at pose.")
       .def("__repr__", [](const py::object& self) { return fields_repr(self); });
 
   py::class_<slam::MapLocalizer>(
