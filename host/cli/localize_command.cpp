@@ -43,6 +43,10 @@ void add_localize_command(CLI::App& app) {
   cmd->add_option("--reference", o->reference,
                   "reference log in the map's frame: adds the trajectory error (ATE) to "
                   "metrics.json");
+  cmd->add_option("--relations", o->relations,
+                  "benchmark relations of the log: adds their errors to metrics.json (a "
+                  "relation with an end at a scan not tracked counts as unmatched) and writes "
+                  "DIR/relations.csv");
   add_arithmetic_option(*cmd, o->arithmetic, "int: S_eps index sums; float: log-odds in double")
       ->default_str("int");
   o->config.tracking.threads = 0;

@@ -35,6 +35,8 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   if (log.scans.empty()) throw io::InputError(o.log, 0, "scans", "the log has no scans");
   std::optional<std::vector<slam::TimedPose>> reference;
   if (o.reference) reference = slam::scan_poses(io::read_log(*o.reference));
+  RelationScoring scoring;
+  if (o.relations) scoring = read_relations_for(*o.relations, o.log, log);
 
   std::optional<navigation::KnownMapLocalizer> localizer;
   try {
@@ -81,6 +83,13 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
     }
   }
 
+  std::vector<slam::RelationResult> relation_results;
+  if (o.relations) {
+    relation_results = slam::relation_errors(by_time(r.trajectory), scoring.relations);
+    r.relations = slam::summarize_relations(relation_results);
+    r.odometry_relations = slam::summarize_relations(scoring.odometry);
+  }
+
   std::size_t matched = 0, wide = 0, lost = 0, tracked = 0;
   for (const navigation::LocalizerStep& s : r.steps) {
     matched += s.fix.matched;
@@ -111,7 +120,17 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
     r.metrics["ate"] = error_json(*r.ate);
     r.metrics["odometry_ate"] = error_json(*r.odometry_ate);
   }
+  if (r.relations) {
+    // Relations with an end at a scan that was not tracked count as unmatched.
+    r.metrics["relations_file"] = o.relations->string();
+    r.metrics["relations"] = relation_json(*r.relations);
+    r.metrics["odometry_relations"] = relation_json(*r.odometry_relations);
+    r.metrics["relation_stretches"] =
+        stretches_json(slam::worst_stretches(relation_results), log.scans.front().t);
+  }
 
+  if (o.relations)
+    write_relation_errors(out.file("relations.csv"), relation_results, scoring.odometry);
   write_trajectory(out.file("trajectory.txt"), r.trajectory,
                    "the localizer's estimate of each scan, in the map's frame");
   io::write_file_atomically(out.file("fit.csv"), [&](std::ostream& f) {

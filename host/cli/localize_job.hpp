@@ -13,6 +13,7 @@
 
 #include "intgrid/core/types.hpp"
 #include "intgrid/navigation/known_map_localizer.hpp"
+#include "intgrid/slam/relations.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 
 namespace intgrid::cli {
@@ -23,6 +24,7 @@ struct LocalizeJobOptions {
   std::filesystem::path out;
   std::optional<core::Pose2> initial;  // the robot's pose in the map's frame at the first scan
   std::optional<std::filesystem::path> reference;
+  std::optional<std::filesystem::path> relations;  // benchmark relations of the log
   core::Arithmetic arithmetic = core::Arithmetic::integer;
   navigation::KnownMapLocalizerConfig config;  // its tracking cell is the map's
   bool progress = true;
@@ -33,13 +35,14 @@ struct LocalizeJobResult {
   std::vector<navigation::LocalizerStep> steps;  // every scan's
   double seconds = 0.0;  // the localization alone, without reading or writing
   std::optional<slam::TrajectoryError> ate, odometry_ate;
+  std::optional<slam::RelationError> relations, odometry_relations;
   nlohmann::json metrics;  // what metrics.json holds
 };
 
-// Reads the map and the log (and reference), localizes every scan, writes DIR/trajectory.txt
-// (the tracked scans), fit.csv (t, state, evidence, matched, wide, hits, fit, fused scans),
-// map.png and metrics.json, each atomically. A map whose cell the SLAM's settings refuse is an
-// InputError naming the map's resolution.
+// Reads the map and the log (and reference, relations), localizes every scan, writes
+// DIR/trajectory.txt (the tracked scans), fit.csv (t, state, evidence, matched, wide, hits, fit,
+// fused scans), map.png, metrics.json and with relations relations.csv, each atomically. A map
+// whose cell the SLAM's settings refuse is an InputError naming the map's resolution.
 LocalizeJobResult run_localize_job(const LocalizeJobOptions& options);
 
 }  // namespace intgrid::cli

@@ -27,74 +27,6 @@
 namespace intgrid::cli {
 namespace {
 
-nlohmann::json relation_json(const slam::RelationError& e) {
-  return {{"matched", e.matched},
-          {"unmatched", e.unmatched},
-          {"off", e.off},
-          {"off_fraction", e.matched > 0 ? double(e.off) / double(e.matched) : 0.0},
-          {"trans_median", e.trans_median},
-          {"rot_median_deg", e.rot_median_deg},
-          {"trans_mean", e.trans_mean},
-          {"trans_std", e.trans_std},
-          {"rot_mean_deg", e.rot_mean_deg},
-          {"rot_std_deg", e.rot_std_deg},
-          {"trans_sq_mean", e.trans_sq_mean},
-          {"trans_sq_std", e.trans_sq_std},
-          {"rot_sq_mean", e.rot_sq_mean},
-          {"rot_sq_std", e.rot_sq_std}};
-}
-
-// The worst stretches of the SLAM trajectory (at most 10), as metrics.json lists them, with
-// their times also in seconds from the log's first scan (t0).
-nlohmann::json stretches_json(std::span<const slam::RelationStretch> stretches, double t0) {
-  nlohmann::json out = nlohmann::json::array();
-  for (std::size_t i = 0; i < std::min<std::size_t>(stretches.size(), 10); ++i) {
-    const slam::RelationStretch& s = stretches[i];
-    out.push_back({{"t1_first", s.t1_first},
-                   {"t1_last", s.t1_last},
-                   {"t2_min", s.t2_min},
-                   {"t2_max", s.t2_max},
-                   {"t1_from_start", {s.t1_first - t0, s.t1_last - t0}},
-                   {"t2_from_start", {s.t2_min - t0, s.t2_max - t0}},
-                   {"relations", s.relations},
-                   {"off", s.off},
-                   {"trans_max", s.trans_max},
-                   {"rot_max_deg", s.rot_max_deg}});
-  }
-  return out;
-}
-
-// DIR/relations.csv: each relation with the SLAM's error and the raw odometry's (empty where a
-// relation matched no pose), in the relations file's order.
-void write_relation_errors(const std::filesystem::path& file,
-                           std::span<const slam::RelationResult> slam_results,
-                           std::span<const slam::RelationResult> odometry_results) {
-  io::write_file_atomically(file, [&](std::ostream& out) {
-    out << "t1,t2,trans_error_m,rot_error_deg,off,odometry_trans_error_m,odometry_rot_error_deg\n";
-    const auto errors = [&out](const slam::RelationResult& r) {
-      if (r.matched)
-        out << io::format_number(r.trans_error) << ',' << io::format_number(r.rot_error_deg);
-      else
-        out << ',';
-    };
-    for (std::size_t i = 0; i < slam_results.size(); ++i) {
-      const slam::RelationResult& r = slam_results[i];
-      out << io::format_number(r.relation.t1) << ',' << io::format_number(r.relation.t2) << ',';
-      errors(r);
-      out << ',' << (r.off() ? 1 : 0) << ',';
-      errors(odometry_results[i]);
-      out << '\n';
-    }
-  });
-}
-
-// The poses in time order (score_relations needs it; a log's scans normally are).
-std::vector<slam::TimedPose> by_time(std::vector<slam::TimedPose> poses) {
-  std::stable_sort(poses.begin(), poses.end(),
-                   [](const slam::TimedPose& a, const slam::TimedPose& b) { return a.t < b.t; });
-  return poses;
-}
-
 // The submaps engine's settings, nested as SubmapSlamConfig is (the fields' paths of
 // check_submap_slam_config), and the map's eps.
 nlohmann::json submap_settings_json(const slam::SubmapSlamConfig& c, const core::SepsCodec& codec) {
@@ -260,21 +192,11 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
   r.engine = o.engine;
   // The relations are read and scored on the raw odometry before SLAM runs: the SLAM trajectory
   // has the same times (one pose a scan), so a file for another log is refused at once.
-  std::vector<slam::Relation> relations;
-  std::vector<slam::RelationResult> odometry_results, slam_results;
+  RelationScoring scoring;
+  std::vector<slam::RelationResult> slam_results;
   if (o.relations) {
-    const std::vector<io::RelationRecord> records = io::read_relations(*o.relations);
-    relations = io::relations_of(records);
-    odometry_results = slam::relation_errors(by_time(slam::scan_poses(log)), relations);
-    r.odometry_relations = slam::summarize_relations(odometry_results);
-    if (r.odometry_relations->matched == 0)
-      throw io::InputError(
-          *o.relations, records.front().line, "t1",
-          io::printed("none of its %zu relations matches a scan of the log %s within %g s (its "
-                      "scans span %s to %s s)",
-                      records.size(), o.log.string().c_str(), slam::kRelationTolerance,
-                      io::format_number(log.scans.front().t).c_str(),
-                      io::format_number(log.scans.back().t).c_str()));
+    scoring = read_relations_for(*o.relations, o.log, log);
+    r.odometry_relations = slam::summarize_relations(scoring.odometry);
   }
   io::OutputFolder out = open_output_folder(o.out);
   const auto start = std::chrono::steady_clock::now();
@@ -303,7 +225,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     }
   }
   if (o.relations) {
-    slam_results = slam::relation_errors(by_time(r.run.trajectory), relations);
+    slam_results = slam::relation_errors(by_time(r.run.trajectory), scoring.relations);
     r.relations = slam::summarize_relations(slam_results);
   }
 
@@ -364,7 +286,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
   }
 
   write_trajectory(out.file("trajectory.txt"), r.run.trajectory, "the SLAM estimate of each scan");
-  if (o.relations) write_relation_errors(out.file("relations.csv"), slam_results, odometry_results);
+  if (o.relations) write_relation_errors(out.file("relations.csv"), slam_results, scoring.odometry);
   const core::ProbabilityGrid map = slam::slam_map_probabilities(r.run);
   io::write_ros_map(out.file("map.yaml"), io::RosMap{map});
   io::RgbImage image = io::render_probability_grid(map);

@@ -1,16 +1,18 @@
 // What the jobs that estimate a trajectory (`slam`, `localize`) write and report alike: the
-// trajectory file, the ATE in metrics.json, the positions drawn on a map, the process's peak
-// memory.
+// trajectory file, the ATE and the relation errors in metrics.json and relations.csv, the
+// positions drawn on a map, the process's peak memory.
 #pragma once
 
 #include <cstddef>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "intgrid/core/types.hpp"
+#include "intgrid/slam/relations.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
 
 namespace intgrid::cli {
@@ -26,5 +28,31 @@ std::vector<core::Pose2> positions(const std::vector<slam::TimedPose>& poses);
 
 // The peak resident set of this process so far (bytes; Linux reports ru_maxrss in KiB).
 std::size_t peak_memory_bytes();
+
+// A benchmark relations file and the log's raw odometry scored on it (relations are relative:
+// the odometry's frame does not matter). A file none of whose relations matches a scan of the
+// log is an InputError naming the file's first relation.
+struct RelationScoring {
+  std::vector<slam::Relation> relations;
+  std::vector<slam::RelationResult> odometry;
+};
+RelationScoring read_relations_for(const std::filesystem::path& relations_file,
+                                   const std::filesystem::path& log_file, const core::Log& log);
+
+// A summary of relation errors as metrics.json holds it.
+nlohmann::json relation_json(const slam::RelationError& e);
+
+// The worst stretches of a trajectory (at most 10), as metrics.json lists them, with their times
+// also in seconds from the log's first scan (t0).
+nlohmann::json stretches_json(std::span<const slam::RelationStretch> stretches, double t0);
+
+// DIR/relations.csv: each relation with the estimate's error and the raw odometry's (empty where
+// a relation matched no pose), in the relations file's order.
+void write_relation_errors(const std::filesystem::path& file,
+                           std::span<const slam::RelationResult> results,
+                           std::span<const slam::RelationResult> odometry_results);
+
+// The poses in time order (score_relations needs it; a log's scans normally are).
+std::vector<slam::TimedPose> by_time(std::vector<slam::TimedPose> poses);
 
 }  // namespace intgrid::cli

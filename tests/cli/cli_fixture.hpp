@@ -87,6 +87,13 @@ inline std::string file_text(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// The JSON object under "key" in metrics.json's text, up to its closing brace (no nesting).
+inline std::string json_object(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find("\"" + key + "\": {");
+  if (at == std::string::npos) return {};
+  return text.substr(at, text.find('}', at) - at + 1);
+}
+
 // `intgrid globloc` and `figure globloc-sweeps`: a 4 x 3 m room at 10 cm with two blocks that
 // break its symmetry.
 inline fs::path write_globloc_room(const fs::path& dir) {

@@ -1,10 +1,13 @@
 // `intgrid localize`.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_fixture.hpp"
 #include "data_dir.hpp"
@@ -59,6 +62,60 @@ TEST_F(Cli, LocalizeTracksTheBundledLogInItsMap) {
 
 TEST_F(Cli, LocalizeFindsTheBundledLogInItsMapWithNoInitialPose) {
   localizes_the_bundled_log(dir_, "");
+}
+
+// --relations: relations between the reference's poses 20 scans apart, scored on the localized
+// trajectory and on the raw odometry: metrics.json's two summaries, relations.csv a line each.
+// A file whose relations match no scan of the log is an input error naming it.
+TEST_F(Cli, LocalizeScoresTheRelationsOfTheLog) {
+  const fs::path data = intgrid::test::data_dir();
+  std::ifstream reference(data / "malaga_telecom_loop_reference.log");
+  struct Stamped {
+    double t, x, y, theta;
+  };
+  std::vector<Stamped> poses;
+  for (std::string line; std::getline(reference, line);) {
+    std::istringstream in(line);
+    std::vector<std::string> fields{std::istream_iterator<std::string>(in), {}};
+    if (fields.empty() || fields[0] != "RLASER") continue;
+    const std::size_t n = fields.size();
+    poses.push_back({std::stod(fields[n - 1]), std::stod(fields[n - 7]), std::stod(fields[n - 6]),
+                     std::stod(fields[n - 5])});
+  }
+  ASSERT_GT(poses.size(), 90u);
+  std::ostringstream relations;
+  relations.precision(17);
+  std::size_t written = 0;
+  for (std::size_t i = 0; i + 20 < poses.size(); i += 2, ++written) {
+    const Stamped &a = poses[i], &b = poses[i + 20];
+    const double c = std::cos(a.theta), s = std::sin(a.theta), dx = b.x - a.x, dy = b.y - a.y;
+    relations << a.t << ' ' << b.t << ' ' << c * dx + s * dy << ' ' << -s * dx + c * dy << " 0 0 0 "
+              << std::remainder(b.theta - a.theta, 2.0 * M_PI) << '\n';
+  }
+  const fs::path file = write("telecom.relations", relations.str());
+  const std::string common = "localize --map " + (data / "malaga_telecom_map.yaml").string() +
+                             " --log " + (data / "malaga_telecom_loop.log").string() +
+                             " --threads 2 --out " + (dir_ / "out").string();
+  const CliRun r = run(common + " --relations " + file.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string metrics = file_text(dir_ / "out" / "metrics.json");
+  const auto mean_of = [&](const std::string& key) {
+    const std::string object = json_object(metrics, key);
+    const std::size_t at = object.find("\"trans_mean\": ");
+    EXPECT_NE(at, std::string::npos) << key;
+    return std::stod(object.substr(at + 14));
+  };
+  // Localized, a relation's error is the map's and the match's (the trajectory is 0.105 m from
+  // the reference); the odometry drifts over 20 scans.
+  EXPECT_LT(mean_of("relations"), 0.15);
+  EXPECT_GT(mean_of("odometry_relations"), 2.0 * mean_of("relations"));
+  EXPECT_EQ(lines_of(file_text(dir_ / "out" / "relations.csv")).size(), written + 1);
+
+  const fs::path other = write("other.relations", "5 6 0.1 0 0 0 0 0\n");
+  fs::remove_all(dir_ / "out");
+  const CliRun refused = run(common + " --relations " + other.string());
+  expect_error(refused, other.string() + ":1: t1: none of its 1 relations matches a scan");
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
 TEST_F(Cli, LocalizeNeedsAWholeInitialPose) {

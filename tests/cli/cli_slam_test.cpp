@@ -215,13 +215,6 @@ TEST_F(Cli, SlamHelpShowsBothEngines) {
     EXPECT_NE(r.output.find(text), std::string::npos) << text << " in " << r.output;
 }
 
-// The JSON object under "key" in metrics.json's text, up to its closing brace (no nesting).
-std::string json_object(const std::string& text, const std::string& key) {
-  const std::size_t at = text.find("\"" + key + "\": {");
-  if (at == std::string::npos) return {};
-  return text.substr(at, text.find('}', at) - at + 1);
-}
-
 // --relations: relations between pairs of kSlamLog's scan times (100, 101, 102 s), one 5 ms off
 // (within the benchmark's 0.01 s) and one to a time no scan has, scored for the SLAM and the
 // raw odometry, each relation's error in relations.csv; --tum: one line a scan.
