@@ -90,12 +90,14 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
     r.odometry_relations = slam::summarize_relations(scoring.odometry);
   }
 
-  std::size_t matched = 0, wide = 0, lost = 0, tracked = 0;
+  std::size_t matched = 0, wide = 0, lost = 0, tracked = 0, verified = 0, refixed = 0;
   for (const navigation::LocalizerStep& s : r.steps) {
     matched += s.fix.matched;
     wide += s.fix.wide;
     lost += s.state == navigation::LocalizerState::lost;
     tracked += s.state == navigation::LocalizerState::tracking;
+    verified += s.verified;
+    refixed += s.refixed;
   }
   const double log_seconds = log.scans.back().t - log.scans.front().t;
   r.metrics = {{"map", o.map.string()},
@@ -106,6 +108,8 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
                {"matched_scans", matched},
                {"wide_searches", wide},
                {"lost", lost},
+               {"verified_scans", verified},
+               {"refixed", refixed},
                {"skipped_records", skipped_records_json(input.skipped)},
                {"seconds", r.seconds},
                {"log_seconds", log_seconds},
@@ -134,10 +138,11 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   write_trajectory(out.file("trajectory.txt"), r.trajectory,
                    "the localizer's estimate of each scan, in the map's frame");
   io::write_file_atomically(out.file("fit.csv"), [&](std::ostream& f) {
-    f << "t,state,evidence,matched,wide,hits,fit,fused_scans\n";
+    f << "t,state,verified,refixed,evidence,matched,wide,hits,fit,fused_scans\n";
     for (std::size_t i = 0; i < r.steps.size(); ++i) {
       const navigation::LocalizerStep& s = r.steps[i];
       f << io::format_number(log.scans[i].t) << ',' << navigation::state_name(s.state) << ','
+        << int{s.verified} << ',' << int{s.refixed} << ','
         << io::format_number(s.fix.evidence) << ',' << int{s.fix.matched} << ',' << int{s.fix.wide}
         << ',' << s.fix.hits << ',' << io::format_number(s.fix.fit) << ',' << s.fused_scans << '\n';
     }

@@ -41,7 +41,11 @@ void bind_navigation(py::module_& m) {
       .def_readwrite("global_", &KnownMapLocalizerConfig::global,
                      "a GlobalLocConfig: the pose grid's")
       .def_readwrite("sequence", &KnownMapLocalizerConfig::sequence, "a SequenceOptions")
-      .def_readwrite("lost", &KnownMapLocalizerConfig::lost, "a LostCriterion");
+      .def_readwrite("lost", &KnownMapLocalizerConfig::lost, "a LostCriterion")
+      .def_readwrite("verify_every", &KnownMapLocalizerConfig::verify_every,
+                     "m of travel between global localization's checks of the tracked pose")
+      .def_readwrite("contest_scans", &KnownMapLocalizerConfig::contest_scans,
+                     "matched scans an answer elsewhere is tracked beside the pose");
 
   py::class_<LocalizerStep>(m, "LocalizerStep", "One scan's outcome (KnownMapLocalizer).")
       .def_property_readonly(
@@ -52,6 +56,10 @@ void bind_navigation(py::module_& m) {
       .def_readonly("fix", &LocalizerStep::fix, "tracking and lost: the MapFix")
       .def_readonly("fused_scans", &LocalizerStep::fused_scans,
                     "locating and recovering: the scans fused so far")
+      .def_readonly("verified", &LocalizerStep::verified,
+                    "tracking: the pose was given or confirmed by global localization")
+      .def_readonly("refixed", &LocalizerStep::refixed,
+                    "a global answer won a contest against the tracked pose here")
       .def("__repr__", [](const py::object& self) { return fields_repr(self); });
 
   py::class_<KnownMapLocalizer>(

@@ -60,3 +60,6 @@ def test_a_bad_setting_is_a_value_error_naming_it(data_dir):
     config.lost.fit_share = 1.5
     with pytest.raises(ValueError, match="lost.fit_share"):
         intgrid.KnownMapLocalizer(ros.grid, config)
+    config = intgrid.KnownMapLocalizerConfig(contest_scans=0)
+    with pytest.raises(ValueError, match="contest_scans"):
+        intgrid.KnownMapLocalizer(ros.grid, config)

@@ -46,7 +46,7 @@ void localizes_the_bundled_log(const fs::path& dir, const std::string& initial) 
   std::ifstream fit(dir / "out" / "fit.csv");
   std::string line, header;
   std::getline(fit, header);
-  EXPECT_EQ(header, "t,state,evidence,matched,wide,hits,fit,fused_scans");
+  EXPECT_EQ(header, "t,state,verified,refixed,evidence,matched,wide,hits,fit,fused_scans");
   std::size_t rows = 0, tracking = 0;
   while (std::getline(fit, line)) {
     ++rows;

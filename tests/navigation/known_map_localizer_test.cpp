@@ -20,6 +20,8 @@ TEST(KnownMapLocalizer, RefusesABadSettingNamingItsField) {
       {"lost.fit_share", [](KnownMapLocalizerConfig& c) { c.lost.fit_share = std::nan(""); }},
       {"lost.scans", [](KnownMapLocalizerConfig& c) { c.lost.scans = 0; }},
       {"lost.recent", [](KnownMapLocalizerConfig& c) { c.lost.recent = 0; }},
+      {"verify_every", [](KnownMapLocalizerConfig& c) { c.verify_every = 0.0; }},
+      {"contest_scans", [](KnownMapLocalizerConfig& c) { c.contest_scans = 0; }},
       {"step_position", [](KnownMapLocalizerConfig& c) { c.sequence.step_position = -1.0; }},
       {"sensor.sigma", [](KnownMapLocalizerConfig& c) { c.tracking.sensor.sigma = 0.0; }},
       {"pose_res", [](KnownMapLocalizerConfig& c) { c.global.pose_res = -0.2; }},

@@ -45,6 +45,14 @@ struct KnownMapLocalizerConfig {
     int scans = 3;
     int recent = 50;
   } lost;
+  // While tracking, global localization checks the pose once odometry has moved the robot this
+  // far (m) since the last check, and a step after a fix of its own (sequence.step_position): an
+  // unambiguous answer within search.separation of the tracked pose confirms it; one elsewhere
+  // is tracked beside it for contest_scans matched scans, and the pose whose scans fit the map
+  // better (their summed evidence) goes on. Set by hand from the cost: a check is one to a few
+  // global localizations (about 65 ms each in the benchmark logs' maps).
+  double verify_every = 10.0;
+  int contest_scans = 10;
 };
 
 // Throws std::invalid_argument naming the field (lost.fit_share, ...; tracking.*, global.*,
@@ -56,6 +64,9 @@ struct LocalizerStep {
   std::optional<core::Pose2> pose;  // the robot's in the map's frame; none while not tracking
   slam::MapFix fix;                 // tracking and lost: the match in the map
   std::size_t fused_scans = 0;      // locating and recovering: the scans fused so far
+  // Tracking: the pose was given (initial) or confirmed by a global answer since the last fix.
+  bool verified = false;
+  bool refixed = false;  // a global answer won a contest against the tracked pose at this scan
 };
 
 class KnownMapLocalizer {
@@ -72,8 +83,10 @@ class KnownMapLocalizer {
   LocalizerStep localize(const core::Scan& scan);
 
  private:
-  void start_tracking(const core::Pose2& pose);
+  void start_tracking(const core::Pose2& pose, bool verified);
   bool fits(double fit);
+  bool same_place(const core::Pose2& a, const core::Pose2& b) const;
+  void verify(const core::Scan& scan, LocalizerStep& step);
 
   KnownMapLocalizerConfig config_;
   core::Arithmetic arithmetic_;
@@ -81,6 +94,16 @@ class KnownMapLocalizer {
   localization::LocalizationMap pose_grid_map_;
   std::optional<localization::SequenceLocalizer> search_;
   std::optional<slam::MapLocalizer> tracker_;
+  // While tracking: the check in progress; a global answer tracked beside the pose, with both
+  // sums of evidence over the contest's matched scans; the odometry's travel since the last
+  // check.
+  std::optional<localization::SequenceLocalizer> check_;
+  std::optional<slam::MapLocalizer> challenger_;
+  double challenger_evidence_ = 0.0, incumbent_evidence_ = 0.0;
+  int contested_ = 0;
+  std::optional<core::Pose2> previous_odometry_;
+  double travel_ = 0.0;
+  bool verified_ = false;
   bool was_tracking_ = false;
   std::deque<double> fits_;  // the recent fitting scans' fits
   int misfits_ = 0;          // matched scans in a row that did not fit
