@@ -124,14 +124,10 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
     r.metrics["ate"] = error_json(*r.ate);
     r.metrics["odometry_ate"] = error_json(*r.odometry_ate);
   }
-  if (r.relations) {
-    // Relations with an end at a scan that was not tracked count as unmatched.
-    r.metrics["relations_file"] = o.relations->string();
-    r.metrics["relations"] = relation_json(*r.relations);
-    r.metrics["odometry_relations"] = relation_json(*r.odometry_relations);
-    r.metrics["relation_stretches"] =
-        stretches_json(slam::worst_stretches(relation_results), log.scans.front().t);
-  }
+  // Relations with an end at a scan that was not tracked count as unmatched.
+  if (o.relations)
+    add_relation_metrics(r.metrics, *o.relations, relation_results, scoring.odometry,
+                         log.scans.front().t);
 
   if (o.relations)
     write_relation_errors(out.file("relations.csv"), relation_results, scoring.odometry);
@@ -142,9 +138,9 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
     for (std::size_t i = 0; i < r.steps.size(); ++i) {
       const navigation::LocalizerStep& s = r.steps[i];
       f << io::format_number(log.scans[i].t) << ',' << navigation::state_name(s.state) << ','
-        << int{s.verified} << ',' << int{s.refixed} << ','
-        << io::format_number(s.fix.evidence) << ',' << int{s.fix.matched} << ',' << int{s.fix.wide}
-        << ',' << s.fix.hits << ',' << io::format_number(s.fix.fit) << ',' << s.fused_scans << '\n';
+        << int{s.verified} << ',' << int{s.refixed} << ',' << io::format_number(s.fix.evidence)
+        << ',' << int{s.fix.matched} << ',' << int{s.fix.wide} << ',' << s.fix.hits << ','
+        << io::format_number(s.fix.fit) << ',' << s.fused_scans << '\n';
     }
   });
   io::RgbImage image = io::render_probability_grid(ros.grid);

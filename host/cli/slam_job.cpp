@@ -277,13 +277,9 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     r.metrics["ate"] = error_json(*r.ate);
     r.metrics["odometry_ate"] = error_json(*r.odometry_ate);
   }
-  if (r.relations) {
-    r.metrics["relations_file"] = o.relations->string();
-    r.metrics["relations"] = relation_json(*r.relations);
-    r.metrics["odometry_relations"] = relation_json(*r.odometry_relations);
-    r.metrics["relation_stretches"] =
-        stretches_json(slam::worst_stretches(slam_results), log.scans.front().t);
-  }
+  if (o.relations)
+    add_relation_metrics(r.metrics, *o.relations, slam_results, scoring.odometry,
+                         log.scans.front().t);
 
   write_trajectory(out.file("trajectory.txt"), r.run.trajectory, "the SLAM estimate of each scan");
   if (o.relations) write_relation_errors(out.file("relations.csv"), slam_results, scoring.odometry);

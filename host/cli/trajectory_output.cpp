@@ -14,6 +14,48 @@
 
 namespace intgrid::cli {
 
+namespace {
+
+// A summary of relation errors as metrics.json holds it.
+nlohmann::json relation_json(const slam::RelationError& e) {
+  return {{"matched", e.matched},
+          {"unmatched", e.unmatched},
+          {"off", e.off},
+          {"off_fraction", e.matched > 0 ? double(e.off) / double(e.matched) : 0.0},
+          {"trans_median", e.trans_median},
+          {"rot_median_deg", e.rot_median_deg},
+          {"trans_mean", e.trans_mean},
+          {"trans_std", e.trans_std},
+          {"rot_mean_deg", e.rot_mean_deg},
+          {"rot_std_deg", e.rot_std_deg},
+          {"trans_sq_mean", e.trans_sq_mean},
+          {"trans_sq_std", e.trans_sq_std},
+          {"rot_sq_mean", e.rot_sq_mean},
+          {"rot_sq_std", e.rot_sq_std}};
+}
+
+// The worst stretches of a trajectory (at most 10), with their times also in seconds from the
+// log's first scan (t0).
+nlohmann::json stretches_json(std::span<const slam::RelationStretch> stretches, double t0) {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t i = 0; i < std::min<std::size_t>(stretches.size(), 10); ++i) {
+    const slam::RelationStretch& s = stretches[i];
+    out.push_back({{"t1_first", s.t1_first},
+                   {"t1_last", s.t1_last},
+                   {"t2_min", s.t2_min},
+                   {"t2_max", s.t2_max},
+                   {"t1_from_start", {s.t1_first - t0, s.t1_last - t0}},
+                   {"t2_from_start", {s.t2_min - t0, s.t2_max - t0}},
+                   {"relations", s.relations},
+                   {"off", s.off},
+                   {"trans_max", s.trans_max},
+                   {"rot_max_deg", s.rot_max_deg}});
+  }
+  return out;
+}
+
+}  // namespace
+
 nlohmann::json error_json(const slam::TrajectoryError& e) {
   return {{"rmse_m", e.rmse},
           {"max_m", e.max},
@@ -41,41 +83,6 @@ std::size_t peak_memory_bytes() {
   struct rusage usage {};
   if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
   return static_cast<std::size_t>(usage.ru_maxrss) * 1024;
-}
-
-nlohmann::json relation_json(const slam::RelationError& e) {
-  return {{"matched", e.matched},
-          {"unmatched", e.unmatched},
-          {"off", e.off},
-          {"off_fraction", e.matched > 0 ? double(e.off) / double(e.matched) : 0.0},
-          {"trans_median", e.trans_median},
-          {"rot_median_deg", e.rot_median_deg},
-          {"trans_mean", e.trans_mean},
-          {"trans_std", e.trans_std},
-          {"rot_mean_deg", e.rot_mean_deg},
-          {"rot_std_deg", e.rot_std_deg},
-          {"trans_sq_mean", e.trans_sq_mean},
-          {"trans_sq_std", e.trans_sq_std},
-          {"rot_sq_mean", e.rot_sq_mean},
-          {"rot_sq_std", e.rot_sq_std}};
-}
-
-nlohmann::json stretches_json(std::span<const slam::RelationStretch> stretches, double t0) {
-  nlohmann::json out = nlohmann::json::array();
-  for (std::size_t i = 0; i < std::min<std::size_t>(stretches.size(), 10); ++i) {
-    const slam::RelationStretch& s = stretches[i];
-    out.push_back({{"t1_first", s.t1_first},
-                   {"t1_last", s.t1_last},
-                   {"t2_min", s.t2_min},
-                   {"t2_max", s.t2_max},
-                   {"t1_from_start", {s.t1_first - t0, s.t1_last - t0}},
-                   {"t2_from_start", {s.t2_min - t0, s.t2_max - t0}},
-                   {"relations", s.relations},
-                   {"off", s.off},
-                   {"trans_max", s.trans_max},
-                   {"rot_max_deg", s.rot_max_deg}});
-  }
-  return out;
 }
 
 void write_relation_errors(const std::filesystem::path& file,
@@ -121,6 +128,15 @@ RelationScoring read_relations_for(const std::filesystem::path& relations_file,
                     io::format_number(log.scans.front().t).c_str(),
                     io::format_number(log.scans.back().t).c_str()));
   return r;
+}
+
+void add_relation_metrics(nlohmann::json& metrics, const std::filesystem::path& file,
+                          std::span<const slam::RelationResult> results,
+                          std::span<const slam::RelationResult> odometry_results, double t0) {
+  metrics["relations_file"] = file.string();
+  metrics["relations"] = relation_json(slam::summarize_relations(results));
+  metrics["odometry_relations"] = relation_json(slam::summarize_relations(odometry_results));
+  metrics["relation_stretches"] = stretches_json(slam::worst_stretches(results), t0);
 }
 
 }  // namespace intgrid::cli

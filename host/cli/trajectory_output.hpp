@@ -39,12 +39,11 @@ struct RelationScoring {
 RelationScoring read_relations_for(const std::filesystem::path& relations_file,
                                    const std::filesystem::path& log_file, const core::Log& log);
 
-// A summary of relation errors as metrics.json holds it.
-nlohmann::json relation_json(const slam::RelationError& e);
-
-// The worst stretches of a trajectory (at most 10), as metrics.json lists them, with their times
-// also in seconds from the log's first scan (t0).
-nlohmann::json stretches_json(std::span<const slam::RelationStretch> stretches, double t0);
+// metrics.json's relation entries: the file's path, the estimate's and the raw odometry's
+// summaries, the estimate's worst stretches (times also from t0, the log's first scan).
+void add_relation_metrics(nlohmann::json& metrics, const std::filesystem::path& file,
+                          std::span<const slam::RelationResult> results,
+                          std::span<const slam::RelationResult> odometry_results, double t0);
 
 // DIR/relations.csv: each relation with the estimate's error and the raw odometry's (empty where
 // a relation matched no pose), in the relations file's order.

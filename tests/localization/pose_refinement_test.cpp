@@ -332,11 +332,16 @@ ProbabilityGrid corridor() {
   return g;
 }
 
-TEST(PoseTracker, ACorridorOneScanCannotPlaceIsPlacedAfterAShortDrive) {
-  const ProbabilityGrid world = corridor();
+// The corridor's pose grid, for a sensor of 4 m range.
+LocalizationMap corridor_map(const ProbabilityGrid& world) {
   GlobalLocConfig config;
   config.sensor.max_range = 4.0;
-  const LocalizationMap lmap(world, 0.65, 0.196, config);
+  return LocalizationMap(world, 0.65, 0.196, config);
+}
+
+TEST(PoseTracker, ACorridorOneScanCannotPlaceIsPlacedAfterAShortDrive) {
+  const ProbabilityGrid world = corridor();
+  const LocalizationMap lmap = corridor_map(world);
   PoseSearchOptions options;
   options.hypotheses = 2;
   options.threads = 3;
@@ -385,9 +390,7 @@ TEST(PoseTracker, ACorridorOneScanCannotPlaceIsPlacedAfterAShortDrive) {
 // taken once done.
 TEST(SequenceLocalizer, FusesTheScansAStepApartUntilTheAnswerIsUnambiguous) {
   const ProbabilityGrid world = corridor();
-  GlobalLocConfig config;
-  config.sensor.max_range = 4.0;
-  const LocalizationMap lmap(world, 0.65, 0.196, config);
+  const LocalizationMap lmap = corridor_map(world);
   PoseSearchOptions options;
   options.hypotheses = 2;
   SequenceOptions sequence;
@@ -437,9 +440,7 @@ TEST(SequenceLocalizer, FusesTheScansAStepApartUntilTheAnswerIsUnambiguous) {
 
 TEST(SequenceLocalizer, StopsAtMaxScansAndNamesABadStep) {
   const ProbabilityGrid world = corridor();
-  GlobalLocConfig config;
-  config.sensor.max_range = 4.0;
-  const LocalizationMap lmap(world, 0.65, 0.196, config);
+  const LocalizationMap lmap = corridor_map(world);
   SequenceOptions sequence;
   sequence.max_scans = 1;
   SequenceLocalizer localizer(lmap, PoseSearchOptions{}, sequence);
