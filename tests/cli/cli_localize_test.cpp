@@ -118,6 +118,20 @@ TEST_F(Cli, LocalizeScoresTheRelationsOfTheLog) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// The same trajectory and fits, byte for byte, on one thread and on two (the global
+// localization's pose grid and each scan's match split over them).
+TEST_F(Cli, LocalizeIsTheSameForAnyThreadCount) {
+  const fs::path data = intgrid::test::data_dir();
+  for (const char* threads : {"1", "2"}) {
+    const CliRun r = run("localize --map " + (data / "malaga_telecom_map.yaml").string() +
+                         " --log " + (data / "malaga_telecom_loop.log").string() + " --threads " +
+                         threads + " --out " + (dir_ / threads).string());
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  for (const char* file : {"trajectory.txt", "fit.csv"})
+    EXPECT_EQ(file_text(dir_ / "1" / file), file_text(dir_ / "2" / file)) << file;
+}
+
 TEST_F(Cli, LocalizeNeedsAWholeInitialPose) {
   const fs::path data = intgrid::test::data_dir();
   const CliRun r = run("localize --map " + (data / "malaga_telecom_map.yaml").string() + " --log " +
