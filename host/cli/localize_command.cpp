@@ -47,6 +47,7 @@ void add_localize_command(CLI::App& app) {
                   "benchmark relations of the log: adds their errors to metrics.json (a "
                   "relation with an end at a scan not tracked counts as unmatched) and writes "
                   "DIR/relations.csv");
+  cmd->add_option("--tum", o->tum, "also write the tracked scans' poses here in the TUM format");
   add_arithmetic_option(*cmd, o->arithmetic, "int: S_eps index sums; float: log-odds in double")
       ->default_str("int");
   o->config.tracking.threads = 0;

@@ -17,6 +17,7 @@
 #include "intgrid/io/input_error.hpp"
 #include "intgrid/io/log_io.hpp"
 #include "intgrid/io/map_io.hpp"
+#include "intgrid/io/relations_io.hpp"
 #include "intgrid/io/text_io.hpp"
 
 namespace intgrid::cli {
@@ -131,6 +132,7 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
 
   if (o.relations)
     write_relation_errors(out.file("relations.csv"), relation_results, scoring.odometry);
+  if (o.tum) io::write_tum_trajectory(*o.tum, r.trajectory);
   write_trajectory(out.file("trajectory.txt"), r.trajectory,
                    "the localizer's estimate of each scan, in the map's frame");
   io::write_file_atomically(out.file("fit.csv"), [&](std::ostream& f) {

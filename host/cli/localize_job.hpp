@@ -25,6 +25,7 @@ struct LocalizeJobOptions {
   std::optional<core::Pose2> initial;  // the robot's pose in the map's frame at the first scan
   std::optional<std::filesystem::path> reference;
   std::optional<std::filesystem::path> relations;  // benchmark relations of the log
+  std::optional<std::filesystem::path> tum;        // also write the tracked scans here, TUM format
   core::Arithmetic arithmetic = core::Arithmetic::integer;
   navigation::KnownMapLocalizerConfig config;  // its tracking cell is the map's
   bool progress = true;

@@ -66,7 +66,8 @@ TEST_F(Cli, LocalizeFindsTheBundledLogInItsMapWithNoInitialPose) {
 
 // --relations: relations between the reference's poses 20 scans apart, scored on the localized
 // trajectory and on the raw odometry: metrics.json's two summaries, relations.csv a line each.
-// A file whose relations match no scan of the log is an input error naming it.
+// A file whose relations match no scan of the log is an input error naming it. --tum: the
+// tracked scans' poses in the TUM format.
 TEST_F(Cli, LocalizeScoresTheRelationsOfTheLog) {
   const fs::path data = intgrid::test::data_dir();
   std::ifstream reference(data / "malaga_telecom_loop_reference.log");
@@ -96,8 +97,10 @@ TEST_F(Cli, LocalizeScoresTheRelationsOfTheLog) {
   const std::string common = "localize --map " + (data / "malaga_telecom_map.yaml").string() +
                              " --log " + (data / "malaga_telecom_loop.log").string() +
                              " --threads 2 --out " + (dir_ / "out").string();
-  const CliRun r = run(common + " --relations " + file.string());
+  const fs::path tum = dir_ / "poses.tum";
+  const CliRun r = run(common + " --relations " + file.string() + " --tum " + tum.string());
   ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(lines_of(file_text(tum)).size(), 225u);  // --tum: a line a tracked scan
   const std::string metrics = file_text(dir_ / "out" / "metrics.json");
   const auto mean_of = [&](const std::string& key) {
     const std::string object = json_object(metrics, key);
