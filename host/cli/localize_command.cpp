@@ -14,17 +14,20 @@ namespace intgrid::cli {
 void add_localize_command(CLI::App& app) {
   auto o = std::make_shared<LocalizeJobOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "localize", "localization in a known map: a log's scans tracked one after another");
+      "localize", "localization in a known map: a log's scans found, tracked and found again");
   cmd->footer(
       "The robot found by global localization (the pose grid fusing the scans as they come, "
       "until unambiguous), or from --initial; then tracked by the submaps SLAM's localization "
       "event (the odometry's prediction matched by S_eps index sums) against the map; declared "
       "lost when 3 matched scans in a row fit the map (hits within a cell of an occupied cell) "
-      "under a quarter of the recent fitting scans' median, and found again. No mapping, no loop "
-      "closure. Writes DIR/trajectory.txt (t x y theta of the tracked scans, the map's frame), "
-      "fit.csv (each scan's state: locating, tracking, lost, recovering; evidence, fit, scans "
-      "fused), map.png (the path on the map) and metrics.json (with --reference: the ATE, no "
-      "alignment).");
+      "under a quarter of the recent fitting scans' median, and found again. Global "
+      "localization also checks the tracked pose a step after a fix and every 10 m: an answer "
+      "elsewhere is tracked beside it for 10 scans, and the one fitting the map better goes on. "
+      "No mapping, no loop closure. Writes DIR/trajectory.txt (t x y theta of the tracked "
+      "scans, the map's frame), fit.csv (each scan's state: locating, tracking, lost, "
+      "recovering; verified, refixed, evidence, fit, scans fused), map.png (the path on the map) "
+      "and metrics.json (with --reference: the ATE, no alignment; with --relations: their "
+      "errors, and relations.csv).");
   cmd->add_option("--map", o->map, "the known map (ROS map_server YAML); its cell is the grid's")
       ->required();
   cmd->add_option("--log", o->log, "log file (project format or CARMEN)")->required();
