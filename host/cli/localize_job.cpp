@@ -163,9 +163,7 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   std::vector<std::string> caption = {
       "Lines: red the localized path, grey the raw odometry from its first pose" +
           std::string(reference ? ", green the reference" : "") + ".",
-      "Scale: one pixel is one " + io::format_number(ros.grid.geometry.resolution * 100.0) +
-          " cm cell (" + io::format_number(1.0 / ros.grid.geometry.resolution) +
-          " pixels a metre); north up, the map's frame."};
+      map_scale_caption(ros.grid.geometry, "the map's")};
   if (r.ate) {
     char line[160];
     std::snprintf(line, sizeof line, "ATE %.3f m, %.3f m at most (raw odometry %.3f m).",

@@ -291,12 +291,10 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     io::draw_polyline_world(image, map.geometry, positions(slam::scan_poses(*reference)),
                             {30, 160, 30});
   io::draw_polyline_world(image, map.geometry, positions(r.run.trajectory), {220, 30, 30});
-  std::vector<std::string> caption = {
-      "Lines: red the SLAM trajectory, grey the raw odometry" +
-          std::string(reference ? ", green the reference" : "") + ".",
-      "Scale: one pixel is one " + io::format_number(map.geometry.resolution * 100.0) +
-          " cm cell (" + io::format_number(1.0 / map.geometry.resolution) + " pixels a metre); " +
-          "north up, the log's frame."};
+  std::vector<std::string> caption = {"Lines: red the SLAM trajectory, grey the raw odometry" +
+                                          std::string(reference ? ", green the reference" : "") +
+                                          ".",
+                                      map_scale_caption(map.geometry, "the log's")};
   if (r.relations) {
     char line[160];
     std::snprintf(line, sizeof line,

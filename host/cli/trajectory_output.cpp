@@ -79,6 +79,12 @@ std::vector<core::Pose2> positions(const std::vector<slam::TimedPose>& poses) {
   return out;
 }
 
+std::string map_scale_caption(const core::GridGeometry& map, const std::string& frame) {
+  return "Scale: one pixel is one " + io::format_number(map.resolution * 100.0) + " cm cell (" +
+         io::format_number(1.0 / map.resolution) + " pixels a metre); north up, " + frame +
+         " frame.";
+}
+
 std::size_t peak_memory_bytes() {
   struct rusage usage {};
   if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;

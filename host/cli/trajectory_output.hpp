@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "intgrid/core/grid.hpp"
 #include "intgrid/core/types.hpp"
 #include "intgrid/slam/relations.hpp"
 #include "intgrid/slam/trajectory_metrics.hpp"
@@ -25,6 +26,10 @@ void write_trajectory(const std::filesystem::path& file, const std::vector<slam:
                       const std::string& what);
 
 std::vector<core::Pose2> positions(const std::vector<slam::TimedPose>& poses);
+
+// The scale line of a map.png caption: one pixel a cell of `map`, north up, in `frame` ("the
+// log's", "the map's").
+std::string map_scale_caption(const core::GridGeometry& map, const std::string& frame);
 
 // The peak resident set of this process so far (bytes; Linux reports ru_maxrss in KiB).
 std::size_t peak_memory_bytes();

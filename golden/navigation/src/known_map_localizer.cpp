@@ -77,11 +77,7 @@ void KnownMapLocalizer::verify(const core::Scan& scan, LocalizerStep& step) {
   previous_odometry_ = scan.robot;
   if (challenger_) {  // the contest goes on: both poses tracked, their scans' evidence summed
     const slam::MapFix fix = challenger_->localize(scan);
-    if (fix.matched && step.fix.matched) {
-      challenger_evidence_ += fix.evidence;
-      incumbent_evidence_ += step.fix.evidence;
-      ++contested_;
-    }
+    contest(fix, step.fix);
     if (contested_ < config_.contest_scans) return;
     if (challenger_evidence_ > incumbent_evidence_) {
       tracker_.swap(challenger_);
@@ -120,14 +116,16 @@ void KnownMapLocalizer::verify(const core::Scan& scan, LocalizerStep& step) {
   // Elsewhere: a contest. The answer is tracked beside the pose for contest_scans matched scans;
   // the one whose scans fit the map better (their summed evidence) goes on.
   challenger_.emplace(config_.tracking, arithmetic_, indices_, answer);
-  const slam::MapFix fix = challenger_->localize(scan);
   challenger_evidence_ = incumbent_evidence_ = 0.0;
   contested_ = 0;
-  if (fix.matched && step.fix.matched) {
-    challenger_evidence_ += fix.evidence;
-    incumbent_evidence_ += step.fix.evidence;
-    ++contested_;
-  }
+  contest(challenger_->localize(scan), step.fix);
+}
+
+void KnownMapLocalizer::contest(const slam::MapFix& challenger, const slam::MapFix& incumbent) {
+  if (!challenger.matched || !incumbent.matched) return;
+  challenger_evidence_ += challenger.evidence;
+  incumbent_evidence_ += incumbent.evidence;
+  ++contested_;
 }
 
 bool KnownMapLocalizer::fits(double fit) {

@@ -87,6 +87,8 @@ class KnownMapLocalizer {
   bool fits(double fit);
   bool same_place(const core::Pose2& a, const core::Pose2& b) const;
   void verify(const core::Scan& scan, LocalizerStep& step);
+  // One scan of the contest: both fixes' evidence summed when both were matched.
+  void contest(const slam::MapFix& challenger, const slam::MapFix& incumbent);
 
   KnownMapLocalizerConfig config_;
   core::Arithmetic arithmetic_;
