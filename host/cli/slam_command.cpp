@@ -47,6 +47,7 @@ const FieldFlags& submap_slam_flags() {
       {"map.seps_levels", "--levels"},
       {"map.empty_divisor", "--empty-divisor"},
       {"submaps.scans", "--submap-scans"},
+      {"submaps.handover_scans", "--submap-handover"},
       {"filter.distance", "--filter-distance"},
       {"filter.degrees", "--filter-degrees"},
       {"filter.seconds", "--filter-seconds"},
@@ -219,6 +220,10 @@ std::vector<CLI::Option*> add_submap_options(CLI::App& cmd, slam::SubmapSlamConf
                                  "again against it (true|false)")
                       ->capture_default_str()
                       ->group(group));
+  add("--submap-handover", c.submaps.handover_scans,
+      "nodes the newer submap must hold before it can take over as the target from an older one "
+      "the scans have moved on from (0: never)",
+      whole_at_least(0));
   add("--bits,--seps-bits", c.map.seps_bits, "S_eps index width of the submaps' cells",
       whole_at_least(1));
   add("--levels,--seps-levels", c.map.seps_levels, "one reading's strongest occupied index",

@@ -62,7 +62,10 @@ void bind_submap_slam(py::module_& m) {
       .def_readwrite("scans", &SubmapSlamConfig::Submaps::scans,
                      "nodes a submap takes before the next starts")
       .def_readwrite("rematch", &SubmapSlamConfig::Submaps::rematch,
-                     "once complete, match its first `scans` nodes again against it");
+                     "once complete, match its first `scans` nodes again against it")
+      .def_readwrite("handover_scans", &SubmapSlamConfig::Submaps::handover_scans,
+                     "nodes the newer submap must hold before it can take over as the target "
+                     "(0: never)");
 
   py::class_<SubmapSlamConfig::MotionFilter> filter(
       config, "MotionFilter", "A scan becomes a node once the pose moved this far.");
@@ -131,6 +134,7 @@ void bind_submap_slam(py::module_& m) {
       .def_readonly("nodes", &SubmapSlamStats::nodes)
       .def_readonly("submaps", &SubmapSlamStats::submaps)
       .def_readonly("wide_searches", &SubmapSlamStats::wide_searches)
+      .def_readonly("handovers", &SubmapSlamStats::handovers)
       .def_readonly("unmatched_scans", &SubmapSlamStats::unmatched_scans)
       .def_readonly("loop_searches", &SubmapSlamStats::loop_searches)
       .def_readonly("loop_closures", &SubmapSlamStats::loop_closures)

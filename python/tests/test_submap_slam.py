@@ -53,6 +53,11 @@ def test_nested_config_reads_and_writes_and_checks(loop_log):
     assert config.submaps.rematch is True
     config.submaps.rematch = False
     assert config.submaps.rematch is False
+    assert config.submaps.handover_scans == 11
+    config.submaps.handover_scans = 100
+    with pytest.raises(ValueError, match="submaps.handover_scans"):
+        config.check()
+    config.submaps.handover_scans = 0
     config.sensor = intgrid.RangeSensor(max_range=20.0)
     assert config.sensor.max_range == 20.0 and config.sensor.sigma == 0.03
     assert "loops=" in repr(config)

@@ -544,6 +544,64 @@ TEST(SubmapSlam, HoldsAStartInAFeaturelessCorridorInDouble) {
   holds_a_featureless_corridor_start(core::Arithmetic::floating);
 }
 
+// A robot that drives round a cramped room (4 x 3 m) and then out through its door into an open
+// hall (20 x 16 m, with pillars), at 90 beams: the scans move on from what the older active
+// submap holds (the room) to what only the newer one has begun to hold (the hall), as at ACES's
+// 502 s. The newer submap then takes over as the target (SubmapSlamConfig::Submaps::
+// handover_scans); while the robot stays in the room the older submap holds all it sees, with
+// more scans than the newer one, and none is handed over.
+SimulatedRun room_then_hall(bool leave_the_room) {
+  core::ProbabilityGrid world(core::GridGeometry{540, 360, 0.05, 0.0, 0.0}, 1.0);
+  fill_rectangle(world, 1, 1, 5, 4, 0.0);        // the room
+  fill_rectangle(world, 4.9, 2, 6.1, 3, 0.0);    // its door
+  fill_rectangle(world, 6, 0.5, 26, 16.5, 0.0);  // the hall
+  for (const auto& [x, y] :
+       std::vector<std::pair<double, double>>{{10, 5}, {15, 12}, {20, 4}, {23, 13}, {12, 14}})
+    fill_rectangle(world, x, y, x + 0.5, y + 0.5, 1.0);  // its pillars
+  simulation::TrajectoryConfig route;
+  route.scans = 900;
+  std::vector<core::Pose2> truth =
+      simulation::follow_route({{2, 2}, {4, 2}, {4, 3}, {2, 3}}, true, route);
+  truth.resize(500);  // about 12 rounds of the room, about 450 nodes
+  if (leave_the_room) {
+    route.scans = 500;
+    const std::vector<core::Pose2> out = simulation::follow_route(
+        {{2, 2}, {4, 2.5}, {8, 2.5}, {13, 8}, {21, 9}, {17, 14}, {8, 10}}, false, route);
+    truth.insert(truth.end(), out.begin(), out.end());
+  }
+  return record_run(world, truth, 41, simulation::lidar_sensor(90, std::numbers::pi, 20.0), 43);
+}
+
+void hands_over_when_the_scans_move_on(core::Arithmetic arithmetic) {
+  const SimulatedRun stay = room_then_hall(false), leave = room_then_hall(true);
+  SubmapSlamStats stayed, left;
+  const SlamRun stay_run = run_submap_slam(stay.log, SubmapSlamConfig{}, arithmetic, &stayed);
+  const SlamRun leave_run = run_submap_slam(leave.log, SubmapSlamConfig{}, arithmetic, &left);
+  SubmapSlamConfig never;
+  never.submaps.handover_scans = 0;
+  SubmapSlamStats kept;
+  const SlamRun never_run = run_submap_slam(leave.log, never, arithmetic, &kept);
+  const TrajectoryError stay_error = absolute_trajectory_error(stay_run.trajectory, stay.truth);
+  const TrajectoryError leave_error = absolute_trajectory_error(leave_run.trajectory, leave.truth);
+  const TrajectoryError never_error = absolute_trajectory_error(never_run.trajectory, leave.truth);
+  std::printf(
+      "room then hall: staying %zu handovers (%zu nodes, ATE %.3f m); leaving %zu handovers "
+      "(%zu nodes, ATE %.3f m), never handing over ATE %.3f m\n",
+      stayed.handovers, stayed.nodes, stay_error.rmse, left.handovers, left.nodes, leave_error.rmse,
+      never_error.rmse);
+  EXPECT_EQ(stayed.handovers, 0u);
+  EXPECT_GT(left.handovers, 0u);
+  EXPECT_EQ(kept.handovers, 0u);
+  EXPECT_GT(stayed.nodes, 4u * static_cast<std::size_t>(SubmapSlamConfig{}.submaps.scans));
+}
+
+TEST(SubmapSlam, HandsOverToTheNewerSubmapWhenTheScansMoveOnInInteger) {
+  hands_over_when_the_scans_move_on(core::Arithmetic::integer);
+}
+TEST(SubmapSlam, HandsOverToTheNewerSubmapWhenTheScansMoveOnInDouble) {
+  hands_over_when_the_scans_move_on(core::Arithmetic::floating);
+}
+
 // The loop as an interlaced laser records it: successive scans take every other beam, the even
 // ones (181) and the odd ones (180, half a step further on), and the odd scans list their beams
 // from the last bearing backwards. Each scan states its geometry; an engine that read the odd

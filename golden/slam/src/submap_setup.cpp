@@ -84,6 +84,7 @@ TrackerSetup make_tracker_setup(const SubmapSlamConfig& c, const core::SepsCodec
   s.wide_below_permille = std::llround(t.wide_below * 1000.0);
   s.min_hits = t.min_hits;
   s.submap_scans = c.submaps.scans;
+  s.handover_scans = c.submaps.handover_scans;
   s.filter_mm = millimetres(c.filter.distance);
   s.filter_units = angle_units(radians(c.filter.degrees));
   s.filter_ms = core::milliseconds(c.filter.seconds);

@@ -65,6 +65,8 @@ void check_submap_slam_config(const SubmapSlamConfig& c) {
                 "must be 1..127");
   require_field(c.submaps.scans >= 1 && c.submaps.scans <= 100000, "submaps.scans",
                 "must be 1..100000");
+  require_field(c.submaps.handover_scans >= 0 && c.submaps.handover_scans <= c.submaps.scans,
+                "submaps.handover_scans", "must be from 0 to submaps.scans");
   require_field(non_negative(c.filter.distance) && c.filter.distance <= 100.0, "filter.distance",
                 "must be in [0, 100] metres");
   require_field(non_negative(c.filter.degrees) && c.filter.degrees <= 180.0, "filter.degrees",
@@ -215,6 +217,7 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     TrackStep step = tracker.localize(scan, *sensor);
     tracker.map(step, scan, *sensor, core::milliseconds(t));
     stats.wide_searches += step.wide;
+    stats.handovers += step.node && step.newer_fits_better;
     stats.unmatched_scans += !step.matched;
     for (Submap<Cell>& done : tracker.take_finished()) finish_submap(std::move(done));
     if (step.node) add_node(step, scan, std::move(sensor));
@@ -250,9 +253,10 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     if (config.submaps.rematch) rematch_young_nodes(s, points);
   }
 
-  // The front end matches a scan against the older active submap only. A submap's first
-  // submaps.scans nodes were therefore placed in it through another submap (or, in the first
-  // submap, against the few scans it held then): matched again against it once it is complete,
+  // The front end matches a scan against the older active submap only. A submap's first nodes,
+  // up to submaps.scans of them, were therefore placed in it through another submap, or against
+  // the few scans it held then (the first submap, or one that took over early as the target,
+  // submaps.handover_scans): matched again against it once it is complete,
   // as the front end would (its narrow window, the prior weighed by what the submap's own nodes
   // score in it), each of their edges to it takes the pose found.
   void rematch_young_nodes(const SubmapRecord& s, const std::vector<ScanPoints>& points) {
