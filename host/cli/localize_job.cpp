@@ -127,8 +127,8 @@ LocalizeJobResult run_localize_job(const LocalizeJobOptions& o) {
   }
   // Relations with an end at a scan that was not tracked count as unmatched.
   if (o.relations)
-    add_relation_metrics(r.metrics, *o.relations, relation_results, scoring.odometry,
-                         log.scans.front().t);
+    add_relation_metrics(r.metrics, *o.relations, *r.relations, *r.odometry_relations,
+                         relation_results, log.scans.front().t);
 
   if (o.relations)
     write_relation_errors(out.file("relations.csv"), relation_results, scoring.odometry);

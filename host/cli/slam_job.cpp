@@ -282,7 +282,7 @@ SlamJobResult run_slam_job(const SlamJobOptions& o) {
     r.metrics["odometry_ate"] = error_json(*r.odometry_ate);
   }
   if (o.relations)
-    add_relation_metrics(r.metrics, *o.relations, slam_results, scoring.odometry,
+    add_relation_metrics(r.metrics, *o.relations, *r.relations, *r.odometry_relations, slam_results,
                          log.scans.front().t);
 
   write_trajectory(out.file("trajectory.txt"), r.run.trajectory, "the SLAM estimate of each scan");

@@ -137,11 +137,12 @@ RelationScoring read_relations_for(const std::filesystem::path& relations_file,
 }
 
 void add_relation_metrics(nlohmann::json& metrics, const std::filesystem::path& file,
-                          std::span<const slam::RelationResult> results,
-                          std::span<const slam::RelationResult> odometry_results, double t0) {
+                          const slam::RelationError& summary,
+                          const slam::RelationError& odometry_summary,
+                          std::span<const slam::RelationResult> results, double t0) {
   metrics["relations_file"] = file.string();
-  metrics["relations"] = relation_json(slam::summarize_relations(results));
-  metrics["odometry_relations"] = relation_json(slam::summarize_relations(odometry_results));
+  metrics["relations"] = relation_json(summary);
+  metrics["odometry_relations"] = relation_json(odometry_summary);
   metrics["relation_stretches"] = stretches_json(slam::worst_stretches(results), t0);
 }
 

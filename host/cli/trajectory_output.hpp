@@ -45,10 +45,12 @@ RelationScoring read_relations_for(const std::filesystem::path& relations_file,
                                    const std::filesystem::path& log_file, const core::Log& log);
 
 // metrics.json's relation entries: the file's path, the estimate's and the raw odometry's
-// summaries, the estimate's worst stretches (times also from t0, the log's first scan).
+// summaries (as the job computed them), the estimate's worst stretches among its results (times
+// also from t0, the log's first scan).
 void add_relation_metrics(nlohmann::json& metrics, const std::filesystem::path& file,
-                          std::span<const slam::RelationResult> results,
-                          std::span<const slam::RelationResult> odometry_results, double t0);
+                          const slam::RelationError& summary,
+                          const slam::RelationError& odometry_summary,
+                          std::span<const slam::RelationResult> results, double t0);
 
 // DIR/relations.csv: each relation with the estimate's error and the raw odometry's (empty where
 // a relation matched no pose), in the relations file's order.
