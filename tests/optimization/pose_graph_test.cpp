@@ -260,6 +260,30 @@ TEST(PoseGraph, AMeasurementTakenAgainReplacesTheFirst) {
   EXPECT_EQ(again.edge_list()[0].measured.x, 1.0);  // a refused measurement changes nothing
 }
 
+// A measurement taken again with less information along one direction: node 2 lands at the two
+// measurements' mean in node 1's frame, weighted along that direction (x) by the information,
+// evenly across it and in heading.
+TEST(PoseGraph, InformationMeasuredAgainWeighsTheMeasurement) {
+  PoseGraph graph = three_nodes({1.0, 0.0, 0.1});
+  constexpr double kWeight = 0.25;
+  graph.set_measurement(2, {1.2, 0.2, 0.3}, 0.0, kWeight);
+  EXPECT_EQ(graph.edge_list()[2].weak_weight, kWeight);
+  graph.optimize();
+  const Pose2 in_node1 = relative(graph.poses()[1], graph.poses()[2]);
+  EXPECT_NEAR(in_node1.x, (1.0 + kWeight * 1.2) / (1.0 + kWeight), 1e-9);
+  EXPECT_NEAR(in_node1.y, 0.1, 1e-9);
+  EXPECT_NEAR(in_node1.theta, 0.2, 1e-9);
+  EXPECT_THROW(graph.set_measurement(3, {}, 0.0, 1.0), std::out_of_range);
+  EXPECT_THROW(graph.set_measurement(2, {}, 0.0, 1.5), std::invalid_argument);
+  EXPECT_THROW(graph.set_measurement(2, {}, std::numeric_limits<double>::infinity(), 1.0),
+               std::invalid_argument);
+  EXPECT_THROW(
+      graph.set_measurement(2, {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0}, 0.0, 1.0),
+      std::invalid_argument);
+  EXPECT_EQ(graph.edge_list()[2].measured.x, 1.2);  // a refused measurement changes nothing
+  EXPECT_EQ(graph.edge_list()[2].weak_weight, kWeight);
+}
+
 // (d) One grossly wrong loop closure among many correct ones: with the Huber loss it moves the
 // solution far less than without, and it is the one edge past huber_scale.
 TEST(PoseGraph, RobustEdgeResistsAnOutlier) {

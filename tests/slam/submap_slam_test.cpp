@@ -23,6 +23,7 @@
 namespace intgrid::slam {
 namespace {
 
+using test::fill_rectangle;
 using test::record_run;
 using test::SimulatedRun;
 
@@ -464,17 +465,6 @@ TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateFromTheStartInInteger) {
 TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateFromTheStartInDouble) {
   holds_a_spin(spin_with_late_odometry_from_the_start(), "spin, odometry late from the start", 1.0,
                core::Arithmetic::floating);
-}
-
-// Sets every cell of world whose centre lies inside (x0, x1) x (y0, y1) (m) to value: a drawn
-// world's rooms (0, free) and obstacles (1).
-void fill_rectangle(core::ProbabilityGrid& world, double x0, double y0, double x1, double y1,
-                    double value) {
-  for (int iy = 0; iy < world.geometry.height; ++iy)
-    for (int ix = 0; ix < world.geometry.width; ++ix) {
-      const double x = world.geometry.centre_x(ix), y = world.geometry.centre_y(iy);
-      if (x > x0 && x < x1 && y > y0 && y < y1) world.at(ix, iy) = value;
-    }
 }
 
 // A start in a featureless corridor: 34 m long and 2 m wide with straight, plain walls, a room

@@ -460,6 +460,18 @@ void PoseGraph::set_measurement(std::size_t edge, const core::Pose2& measured) {
   edges_[edge].measured = measured;
 }
 
+void PoseGraph::set_measurement(std::size_t edge, const core::Pose2& measured, double weak_axis,
+                                double weak_weight) {
+  if (edge >= edges_.size()) throw std::out_of_range("pose graph: no edge " + std::to_string(edge));
+  if (!std::isfinite(weak_axis) || !(weak_weight >= 0.0 && weak_weight <= 1.0))
+    throw std::invalid_argument("pose graph: edge " + std::to_string(edge) +
+                                " measured with a weak_axis that is not finite or a weak_weight "
+                                "outside [0, 1]");
+  set_measurement(edge, measured);
+  edges_[edge].weak_axis = weak_axis;
+  edges_[edge].weak_weight = weak_weight;
+}
+
 double PoseGraph::whitened_error(std::size_t edge) const {
   if (edge >= edges_.size()) throw std::out_of_range("pose graph: no edge " + std::to_string(edge));
   const Edge& e = edges_[edge];

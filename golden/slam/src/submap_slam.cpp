@@ -34,6 +34,29 @@ core::Pose2 inverse(const core::Pose2& p) {
   return core::relative(p, {});
 }
 
+// What a match fixes of a node's position: the least sharp direction of the evidence's curvature
+// at the pose found (an edge's weak_axis, optimization::Edge), in the frame of a submap whose
+// anchor has heading anchor_theta, and its curvature as a fraction of the sharpest direction's.
+// None when the evidence peaks in no direction.
+struct MatchInformation {
+  double weak_axis = 0.0;
+  double curvature_ratio = 1.0;
+};
+
+template <class Cell>
+std::optional<MatchInformation> match_information(const EvidenceCurvature<Cell>& k,
+                                                  double anchor_theta) {
+  const double xx = static_cast<double>(k.xx), xy = static_cast<double>(k.xy),
+               yy = static_cast<double>(k.yy);
+  const double spread = std::hypot(0.5 * (xx - yy), xy);
+  const double sharpest = 0.5 * (xx + yy) + spread, least = 0.5 * (xx + yy) - spread;
+  if (!(sharpest > 0.0)) return std::nullopt;
+  // The least sharp direction is square to the sharpest, in the submap's grid frame.
+  return MatchInformation{
+      0.5 * std::atan2(2.0 * xy, xx - yy) + 0.5 * std::numbers::pi - anchor_theta,
+      std::clamp(least / sharpest, 0.0, 1.0)};
+}
+
 }  // namespace
 
 void check_submap_slam_config(const SubmapSlamConfig& c) {
@@ -266,20 +289,32 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
         std::clamp<std::int64_t>(std::llround(s.own_score * 1000.0), 1, 1000);
     const std::size_t young =
         std::min(s.nodes.size(), static_cast<std::size_t>(config.submaps.scans));
-    std::vector<std::optional<SlamPose>> found(young);
+    struct Found {
+      SlamPose pose;
+      EvidenceCurvature<Cell> curvature;
+    };
+    std::vector<std::optional<Found>> found(young);
     core::run_parts(young, threads, [&](std::size_t j) {
       if (static_cast<int>(points[j].size()) < setup.min_hits) return;
       const SlamPose& local = nodes[s.nodes[j]].local;
       const Match<Cell> lattice = match_exhaustive(*s.grid, tracker.rays(), points[j], local,
                                                    window, setup.max_index, MatchScore<Cell>{});
-      found[j] =
+      const SlamPose pose =
           refine_match(*s.grid, tracker.rays(), points[j], local, window, setup.max_index, lattice)
               .pose;
+      found[j] = Found{pose, evidence_curvature(*s.grid, tracker.rays(), points[j], pose)};
     });
-    for (std::size_t j = 0; j < young; ++j)
-      if (found[j])
-        graph.set_measurement(s.local_edges[j],
-                              core::relative(to_pose2(s.anchor), to_pose2(*found[j])));
+    const core::Pose2 anchor = to_pose2(s.anchor);
+    for (std::size_t j = 0; j < young; ++j) {
+      if (!found[j]) continue;
+      const core::Pose2 measured = core::relative(anchor, to_pose2(found[j]->pose));
+      if (const std::optional<MatchInformation> information =
+              match_information(found[j]->curvature, anchor.theta))
+        graph.set_measurement(s.local_edges[j], measured, information->weak_axis,
+                              information->curvature_ratio);
+      else
+        graph.set_measurement(s.local_edges[j], measured);
+    }
   }
 
   void add_node(const TrackStep& step, const QuantizedScan& scan,
@@ -307,8 +342,22 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     for (const std::size_t id : step.submaps) {
       SubmapRecord& s = submaps[id];
       s.local_edges.push_back(graph.edges());
-      graph.add_edge({s.vertex, node.vertex, core::relative(to_pose2(s.anchor), local),
-                      g.local_sigma_xy, radians(g.local_sigma_degrees), false});
+      optimization::Edge edge{s.vertex,
+                              node.vertex,
+                              core::relative(to_pose2(s.anchor), local),
+                              g.local_sigma_xy,
+                              radians(g.local_sigma_degrees),
+                              false};
+      // The node's place in its submaps is what the front end's match fixed: in a corridor with
+      // plain walls, nothing along it (the odometry put it there), and an edge at full weight
+      // in every direction would hold the corridor's length against every closure that
+      // corrects it (a blind corridor's 6.7 m, SubmapSlamLongLoop).
+      if (const std::optional<MatchInformation> information =
+              match_information(tracker.node_curvature(), to_pose2(s.anchor).theta)) {
+        edge.weak_axis = information->weak_axis;
+        edge.weak_weight = information->curvature_ratio;
+      }
+      graph.add_edge(edge);
       s.nodes.push_back(nodes.size());
       s.tied_node = nodes.size();
       s.tied_pose = step.pose;
@@ -421,17 +470,12 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
         ++stats.rejected_closures;
         continue;
       }
-      // What the match fixes of the node's position, direction by direction: the evidence's
-      // curvature there. The closure's information along the least sharp direction is its
-      // curvature as a fraction of the sharpest's (a match in a corridor fixes nothing along
-      // it, and a full-weight closure would pin the node wherever noise put it); a match that
-      // peaks in no direction is no closure.
-      const EvidenceCurvature<Cell>& k = c.curvature;
-      const double xx = static_cast<double>(k.xx), xy = static_cast<double>(k.xy),
-                   yy = static_cast<double>(k.yy);
-      const double spread = std::hypot(0.5 * (xx - yy), xy);
-      const double sharpest = 0.5 * (xx + yy) + spread, least = 0.5 * (xx + yy) - spread;
-      if (!(sharpest > 0.0)) {
+      // What the match fixes of the node's position, direction by direction (a match in a
+      // corridor fixes nothing along it, and a full-weight closure would pin the node wherever
+      // noise put it); one that peaks in no direction is no closure.
+      const std::optional<MatchInformation> information =
+          match_information(c.curvature, to_pose2(s.anchor).theta);
+      if (!information) {
         ++stats.rejected_closures;
         continue;
       }
@@ -443,11 +487,14 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
                                  config.loops.sigma_xy,
                                  radians(config.loops.sigma_degrees),
                                  true};
-      // The least sharp direction is square to the sharpest, in the submap's grid frame; the
-      // edge takes it in the anchor's.
-      closure.weak_axis =
-          0.5 * std::atan2(2.0 * xy, xx - yy) + 0.5 * std::numbers::pi - to_pose2(s.anchor).theta;
-      closure.weak_weight = std::clamp(least / sharpest, 0.0, 1.0);
+      // Along its least sharp direction a closure's position is the best of its whole window,
+      // found with no prior: where the evidence is nearly flat, noise picks it, so it counts
+      // there with the square of the curvature ratio, where a node's edges to its submaps,
+      // placed by the front end at the odometry's prediction, count with the ratio itself. (With
+      // the ratio, and the nodes' edges weighted alike, the closures of a featureless corridor
+      // start pulled its nodes 0.74 m along it, SubmapSlam.HoldsAStartInAFeaturelessCorridor*.)
+      closure.weak_axis = information->weak_axis;
+      closure.weak_weight = information->curvature_ratio * information->curvature_ratio;
       graph.add_edge(closure);
       ++stats.loop_closures;
       ++pending_closures;

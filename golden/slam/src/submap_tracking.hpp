@@ -65,6 +65,9 @@ class LocalTracker {
   const TrackerSetup& setup() const { return setup_; }
   core::IntegerRays rays() const { return {setup_.sin_q16, setup_.cell_mm}; }
   const ScanPoints& points() const { return points_; }
+  // How sharply the last node's match peaked at its pose in the submap it was matched against,
+  // direction by direction (none when it was not matched): what the match fixed of its place.
+  const EvidenceCurvature<Cell>& node_curvature() const { return node_curvature_; }
 
   // The scan taken at t_ms by a sensor of geometry `sensor` (each scan may state its own), in
   // the thesis's events: motion and localization (localize: the odometry's prediction matched
@@ -94,6 +97,7 @@ class LocalTracker {
   std::int64_t node_ms_ = 0;
   bool started_ = false;
   ScanPoints points_;
+  EvidenceCurvature<Cell> node_curvature_;
   // The evidence of the last matches, in thousandths of every hit on the strongest cell: what a
   // correct match scores with this sensor here. The odometry's prior is weighed against it, not
   // against that full score: with half the beams each cell is seen half as often and a correct
@@ -227,6 +231,8 @@ void LocalTracker<Cell>::map(TrackStep& step, const QuantizedScan& scan, const S
   node_pose_ = pose_;
   node_ms_ = t_ms;
   step.node = true;
+  node_curvature_ = step.matched ? evidence_curvature(active_.front().grid, rays, points_, pose_)
+                                 : EvidenceCurvature<Cell>{};
   if (active_.empty() || active_.back().insertions >= setup_.submap_scans) {
     active_.push_back(
         {next_id_++, LocalGrid<Cell>(setup_.cell_mm), {pose_.x_mm, pose_.y_mm, 0}, 0});

@@ -69,6 +69,11 @@ class PoseGraph {
   // Replaces an edge's measurement (a constraint measured again). Throws std::out_of_range for an
   // index that is no edge, std::invalid_argument for a measurement that is not finite.
   void set_measurement(std::size_t edge, const core::Pose2& measured);
+  // The same, with the measurement's information along the position's weak axis (Edge::weak_axis,
+  // Edge::weak_weight) measured again too. Also throws std::invalid_argument for a weak_axis that
+  // is not finite or a weak_weight outside [0, 1].
+  void set_measurement(std::size_t edge, const core::Pose2& measured, double weak_axis,
+                       double weak_weight);
   // How far the current poses are from an edge's measurement, in its sigmas: the norm of its
   // whitened residual (active or not). Throws std::out_of_range for an index that is no edge.
   double whitened_error(std::size_t edge) const;

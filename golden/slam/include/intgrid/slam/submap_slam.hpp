@@ -142,7 +142,10 @@ struct SubmapSlamConfig {
 
   // The pose graph.
   struct Graph {
-    double local_sigma_xy = 0.05;  // node in its submaps, from the front end (m)
+    // A node in its submaps, from the front end (m), across the direction its match fixed
+    // least; along it, as much less as the match's evidence curves less there (nothing along a
+    // corridor with plain walls, where the odometry placed the node).
+    double local_sigma_xy = 0.05;
     double local_sigma_degrees = 0.5;
     double odometry_sigma_xy = 0.1;  // one node to the next, from the front end (m)
     double odometry_sigma_degrees = 1.0;
