@@ -409,6 +409,17 @@ class NormalEquations {
   BlockCholesky cholesky_;
 };
 
+// An edge's information along its weak axis (Edge::weak_axis, Edge::weak_weight), as add_edge and
+// set_measurement take it.
+void check_weak_information(double weak_axis, double weak_weight) {
+  if (!std::isfinite(weak_axis)) {
+    throw std::invalid_argument("pose graph edge: weak_axis must be finite");
+  }
+  if (!(weak_weight >= 0.0 && weak_weight <= 1.0)) {
+    throw std::invalid_argument("pose graph edge: weak_weight must be in [0, 1]");
+  }
+}
+
 }  // namespace
 
 std::size_t PoseGraph::add_node(const core::Pose2& initial) {
@@ -435,12 +446,7 @@ void PoseGraph::add_edge(const Edge& edge) {
   if (!is_positive(edge.sigma_theta)) {
     throw std::invalid_argument("pose graph edge: sigma_theta must be finite and > 0");
   }
-  if (!std::isfinite(edge.weak_axis)) {
-    throw std::invalid_argument("pose graph edge: weak_axis must be finite");
-  }
-  if (!(edge.weak_weight >= 0.0 && edge.weak_weight <= 1.0)) {
-    throw std::invalid_argument("pose graph edge: weak_weight must be in [0, 1]");
-  }
+  check_weak_information(edge.weak_axis, edge.weak_weight);
   if (!is_finite(edge.measured)) {
     throw std::invalid_argument("pose graph edge: measured must be finite");
   }
@@ -463,10 +469,7 @@ void PoseGraph::set_measurement(std::size_t edge, const core::Pose2& measured) {
 void PoseGraph::set_measurement(std::size_t edge, const core::Pose2& measured, double weak_axis,
                                 double weak_weight) {
   if (edge >= edges_.size()) throw std::out_of_range("pose graph: no edge " + std::to_string(edge));
-  if (!std::isfinite(weak_axis) || !(weak_weight >= 0.0 && weak_weight <= 1.0))
-    throw std::invalid_argument("pose graph: edge " + std::to_string(edge) +
-                                " measured with a weak_axis that is not finite or a weak_weight "
-                                "outside [0, 1]");
+  check_weak_information(weak_axis, weak_weight);
   set_measurement(edge, measured);
   edges_[edge].weak_axis = weak_axis;
   edges_[edge].weak_weight = weak_weight;
