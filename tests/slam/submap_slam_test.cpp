@@ -324,10 +324,11 @@ TEST(ScanMatching, RecoversTheTruePoseInInteger) {
 // The corridor loop's scans (simulated_loop): what follows a spin at its start.
 constexpr std::size_t kLoopScans = 700;
 
-// The corridor loop of the simulated floor, kLoopScans scans at 361 beams with the default odometry
-// noise (about 1 m off after one lap), after spin_turns turns on the spot at its start at
-// 2 rad/s (0.4 rad a scan), its odometry's turns scaled by turn_scale (record_run).
-SimulatedRun simulated_loop(int spin_turns = 0, double turn_scale = 1.0) {
+// The corridor loop of the simulated floor, kLoopScans scans at `beams` beams over half a turn
+// with the default odometry noise (about 1 m off after one lap), after spin_turns turns on the
+// spot at its start at 2 rad/s (0.4 rad a scan), its odometry's turns scaled by turn_scale
+// (record_run).
+SimulatedRun simulated_loop(int spin_turns = 0, double turn_scale = 1.0, int beams = 361) {
   simulation::FloorplanConfig floor;
   floor.cell = 0.05;
   const simulation::Floorplan plan = simulation::make_floorplan(floor, 5);
@@ -341,8 +342,8 @@ SimulatedRun simulated_loop(int spin_turns = 0, double turn_scale = 1.0) {
     truth.push_back({loop.front().x, loop.front().y,
                      std::remainder(loop.front().theta + turn_per_scan * i, 2 * std::numbers::pi)});
   truth.insert(truth.end(), loop.begin(), loop.end());
-  return record_run(plan.grid, truth, 9, simulation::lidar_sensor(361, std::numbers::pi, 20.0), 13,
-                    turn_scale);
+  return record_run(plan.grid, truth, 9, simulation::lidar_sensor(beams, std::numbers::pi, 20.0),
+                    13, turn_scale);
 }
 
 const SimulatedRun& loop_run() {
@@ -445,8 +446,8 @@ TEST(SubmapSlam, HoldsASpinOnTheSpotAtTheStartWithAHeadingBiasInDouble) {
 // next two scans' worth (ACES at 411.6 s: 4 degrees reported where the scans turned 20, the rest
 // a scan later). The narrow window (+-8 degrees) cannot reach a 23-degree slip, the wide one can,
 // and there the prediction it contradicts must not veto the scan's pose.
-SimulatedRun spin_with_late_odometry(bool from_the_start) {
-  SimulatedRun late = simulated_loop(2, 1.0);
+SimulatedRun spin_with_late_odometry(bool from_the_start, int beams = 361) {
+  SimulatedRun late = simulated_loop(2, 1.0, beams);
   const std::size_t spin = late.truth.size() - kLoopScans;
   const std::size_t first = from_the_start ? 2 : spin / 2 + 1;
   for (std::size_t i = first; i < spin; i += 3)
@@ -487,6 +488,35 @@ TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateFromTheStartInInteger) {
 }
 TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateFromTheStartInDouble) {
   holds_a_spin(spin_with_late_odometry_from_the_start(), "spin, odometry late from the start", 1.0,
+               core::Arithmetic::floating);
+}
+
+// The spinning starts at 181 beams, a laser of half the resolution (the benchmark's Intel and
+// ACES, and its third log, interlaced): measured 0.29 / 0.28 degree off at most during the
+// biased spin (integer / double), ATE 0.011 / 0.012 m; 0.66 / 0.66 degree with the odometry late
+// in the second turn, ATE 0.012 / 0.013 m. Not held yet, and so not here: the odometry late from
+// the spin's second scan (11.4 degrees off at 181 beams, about 15 at 90: there the slipped
+// scan's best lies inside the narrow window, at a wrong heading), and at 90 beams late in the
+// second turn too (13.7 degrees, integer; docs/results.md).
+const SimulatedRun& spinning_start_at_181_beams() {
+  static const SimulatedRun run = simulated_loop(2, 1.1, 181);
+  return run;
+}
+const SimulatedRun& spin_with_late_odometry_at_181_beams() {
+  static const SimulatedRun run = spin_with_late_odometry(false, 181);
+  return run;
+}
+
+TEST(SubmapSlam, HoldsTheSpinningStartsAt181BeamsInInteger) {
+  holds_a_spin(spinning_start_at_181_beams(), "spinning start, 181 beams", 3.0,
+               core::Arithmetic::integer);
+  holds_a_spin(spin_with_late_odometry_at_181_beams(), "spin, odometry late, 181 beams", 1.0,
+               core::Arithmetic::integer);
+}
+TEST(SubmapSlam, HoldsTheSpinningStartsAt181BeamsInDouble) {
+  holds_a_spin(spinning_start_at_181_beams(), "spinning start, 181 beams", 3.0,
+               core::Arithmetic::floating);
+  holds_a_spin(spin_with_late_odometry_at_181_beams(), "spin, odometry late, 181 beams", 1.0,
                core::Arithmetic::floating);
 }
 
