@@ -240,7 +240,7 @@ struct SubmapSlam::EngineOf final : SubmapSlam::Engine {
     TrackStep step = tracker.localize(scan, *sensor);
     tracker.map(step, scan, *sensor, core::milliseconds(t));
     stats.wide_searches += step.wide;
-    stats.handovers += step.node && step.newer_fits_better;
+    stats.handovers += step.handed_over;
     stats.unmatched_scans += !step.matched;
     for (Submap<Cell>& done : tracker.take_finished()) finish_submap(std::move(done));
     if (step.node) add_node(step, scan, std::move(sensor));

@@ -54,6 +54,8 @@ struct TrackStep {
   // The scan fit the older active submap worse than usual, and the newer one better: the newer
   // takes over as the target (map()).
   bool newer_fits_better = false;
+  // map() finished the older active submap for it before the submap was full: a handover.
+  bool handed_over = false;
 };
 
 template <class Cell>
@@ -249,7 +251,9 @@ void LocalTracker<Cell>::map(TrackStep& step, const QuantizedScan& scan, const S
   // The older submap is finished once it holds twice submap_scans nodes, or earlier when the
   // scans have moved on from it (a scan fit the newer one better; the robot leaving a cramped
   // room, ACES at 502 s, docs/results.md).
-  if (active_.front().insertions >= 2 * setup_.submap_scans || step.newer_fits_better) {
+  const bool full = active_.front().insertions >= 2 * setup_.submap_scans;
+  if (full || step.newer_fits_better) {
+    step.handed_over = !full;
     finished_.push_back(std::move(active_.front()));
     active_.pop_front();
   }
