@@ -31,7 +31,7 @@ double position_error(const SlamRun& run, const test::SimulatedRun& sim, std::si
 // driven once, keeps what the front end did there: up to 0.27 m off (scans 1200 to 2200; ATE
 // 0.142 m, 0.279 m at worst). Part of it is the front end's translation coming out too long
 // (0.18%): the exact ISM leans a fused wall outward by a part of its sigma
-// (SubmapSlamConfig::Sensor::sigma). The floors: 0.1 m at the return, 0.35 m on the far side,
+// (SubmapSlamConfig::sensor.sigma). The floors: 0.1 m at the return, 0.35 m on the far side,
 // ATE 0.2 m, 0.4 m at worst.
 
 TEST(SubmapSlamLongLoop, ClosesALoopThirteenMinutesRoundInInteger) {

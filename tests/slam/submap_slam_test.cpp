@@ -356,12 +356,13 @@ const SimulatedRun& loop_run() {
 // and the graph barely change a trajectory's shape over 20 scans).
 double way_against_truth(const std::vector<TimedPose>& poses, const std::vector<TimedPose>& truth) {
   constexpr std::size_t kChord = 20;
+  const auto chord = [](const std::vector<TimedPose>& v, std::size_t i) {
+    return std::hypot(v[i].pose.x - v[i - kChord].pose.x, v[i].pose.y - v[i - kChord].pose.y);
+  };
   double way = 0.0, true_way = 0.0;
   for (std::size_t i = kChord; i < poses.size(); i += kChord) {
-    way += std::hypot(poses[i].pose.x - poses[i - kChord].pose.x,
-                      poses[i].pose.y - poses[i - kChord].pose.y);
-    true_way += std::hypot(truth[i].pose.x - truth[i - kChord].pose.x,
-                           truth[i].pose.y - truth[i - kChord].pose.y);
+    way += chord(poses, i);
+    true_way += chord(truth, i);
   }
   return way / true_way;
 }
@@ -383,7 +384,7 @@ void tracks_the_loop(core::Arithmetic arithmetic) {
   // Measured 0.057 m (integer) and 0.065 m (double) (docs/results.md); 0.20 m in an earlier
   // revision: the floor is a third of the odometry's. The way: 1.0018 (integer) and 1.0026
   // (double) of the true way, the odometry's 0.9923; with the ISM's sigma at 5 cm 1.0053, at 8
-  // cm 1.0055 (a fused wall leans outward by a part of sigma, SubmapSlamConfig::sensor): the
+  // cm 1.0055 (a fused wall leans outward by a part of sigma, SubmapSlamConfig::sensor.sigma): the
   // floor, half a per cent either way.
   EXPECT_LT(slam.rmse, 0.3);
   EXPECT_LT(slam.rmse, odometry.rmse / 3);
@@ -491,13 +492,13 @@ TEST(SubmapSlam, HoldsASpinWhoseOdometryArrivesLateFromTheStartInDouble) {
                core::Arithmetic::floating);
 }
 
-// The spinning starts at 181 beams, a laser of half the resolution (the benchmark's Intel and
-// ACES, and its third log, interlaced): measured 0.29 / 0.28 degree off at most during the
-// biased spin (integer / double), ATE 0.011 / 0.012 m; 0.66 / 0.66 degree with the odometry late
-// in the second turn, ATE 0.012 / 0.013 m. Not held yet, and so not here: the odometry late from
-// the spin's second scan (11.4 degrees off at 181 beams, about 15 at 90: there the slipped
-// scan's best lies inside the narrow window, at a wrong heading), and at 90 beams late in the
-// second turn too (13.7 degrees, integer; docs/results.md).
+// The spinning starts at 181 beams, a laser of half the resolution (as the benchmark's Intel
+// and ACES at 180, and its third log's interlaced scans): measured 0.29 / 0.28 degree off at most
+// during the biased spin (integer / double), ATE 0.011 / 0.012 m; 0.66 / 0.66 degree with the
+// odometry late in the second turn, ATE 0.012 / 0.013 m. Not held yet, and so not here: the
+// odometry late from the spin's second scan (11.4 degrees off at 181 beams, about 15 at 90: there
+// the slipped scan's best lies inside the narrow window, at a wrong heading), and at 90 beams late
+// in the second turn too (13.7 degrees, integer; docs/results.md).
 const SimulatedRun& spinning_start_at_181_beams() {
   static const SimulatedRun run = simulated_loop(2, 1.1, 181);
   return run;
